@@ -1,0 +1,275 @@
+/*
+ * fx_mat.c — vector/matrix kernels with exact int64 accumulation, and a small linear solve.
+ *
+ * Kernels form exact int64 products, add them with an overflow check, and round once at the
+ * end, so a result is correctly rounded whenever ACC_OVF stays clear (spec 00 §1.6).
+ */
+#include "fx.h"
+
+/*
+ * Exact sum of n products a[i*sa] * b[i*sb], rounded by `shift` to a saturated int32. On the
+ * first int64 overflow the sum stops (it no longer means anything), ACC_OVF is raised and the
+ * result is the int32 extreme in the direction of that overflow.
+ */
+static int32_t dot_rounded(const int32_t *a, uint32_t sa, const int32_t *b, uint32_t sb, uint32_t n,
+                           uint32_t shift, fx_status_t *st)
+{
+    int64_t acc = 0;
+    fx_status_t s = 0u;
+    uint32_t i;
+    int32_t r;
+    for (i = 0u; (i < n) && (i < FX_NMAX) && (s == 0u); i++) {
+        acc = fx_add64_sat(acc, (int64_t)a[i * sa] * (int64_t)b[i * sb], &s);
+    }
+    if (s != 0u) {
+        *st |= FX_ST_ACC_OVF | ((acc > 0) ? FX_ST_SAT_HI : FX_ST_SAT_LO);
+        r = (acc > 0) ? INT32_MAX : INT32_MIN;
+    } else {
+        r = fx_rshift_sat(acc, shift, st);
+    }
+    return r;
+}
+
+/* Shared argument check: dims 1..FX_NMAX, formats in range, qa+qb-qr in [0, 62]. */
+static bool args_ok(uint32_t qa, uint32_t qb, uint32_t qr, uint32_t d1, uint32_t d2,
+                    uint32_t d3, uint32_t *shift, fx_status_t *st)
+{
+    bool ok = (qa <= FX_Q_MAX) && (qb <= FX_Q_MAX) && (qr <= FX_Q_MAX) &&
+              ((qa + qb) >= qr) && ((qa + qb - qr) <= 62u) &&
+              (d1 >= 1u) && (d1 <= FX_NMAX) && (d2 >= 1u) && (d2 <= FX_NMAX) &&
+              (d3 >= 1u) && (d3 <= FX_NMAX);
+    if (ok) {
+        *shift = qa + qb - qr;
+    } else {
+        *st |= FX_ST_ARG;
+        *shift = 0u;
+    }
+    return ok;
+}
+
+int32_t fx_dot(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb, uint32_t n,
+               uint32_t qr, fx_status_t *st)
+{
+    uint32_t sh;
+    int32_t r = 0;
+    if (args_ok(qa, qb, qr, n, 1u, 1u, &sh, st)) {
+        r = dot_rounded(a, 1u, b, 1u, n, sh, st);
+    }
+    return r;
+}
+
+void fx_matvec(const int32_t *m, uint32_t qm, const int32_t *x, uint32_t qx,
+               uint32_t rows, uint32_t cols, int32_t *y, uint32_t qy, fx_status_t *st)
+{
+    uint32_t sh;
+    uint32_t i;
+    bool ok = args_ok(qm, qx, qy, rows, cols, 1u, &sh, st);
+    for (i = 0u; (i < rows) && (i < FX_NMAX); i++) {
+        y[i] = ok ? dot_rounded(&m[i * cols], 1u, x, 1u, cols, sh, st) : 0;
+    }
+}
+
+void fx_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+               uint32_t n, uint32_t k, uint32_t m, int32_t *c, uint32_t qc, fx_status_t *st)
+{
+    uint32_t sh;
+    uint32_t i;
+    uint32_t j;
+    bool ok = args_ok(qa, qb, qc, n, k, m, &sh, st);
+    for (i = 0u; (i < n) && (i < FX_NMAX); i++) {
+        for (j = 0u; (j < m) && (j < FX_NMAX); j++) {
+            c[(i * m) + j] = ok ? dot_rounded(&a[i * k], 1u, &b[j], m, k, sh, st) : 0;
+        }
+    }
+}
+
+void fx_vadd(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st)
+{
+    uint32_t i;
+    if (n > FX_NMAX) {
+        *st |= FX_ST_ARG;
+    }
+    for (i = 0u; (i < n) && (i < FX_NMAX); i++) {
+        y[i] = fx_add_sat(a[i], b[i], st);
+    }
+}
+
+void fx_vsub(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st)
+{
+    uint32_t i;
+    if (n > FX_NMAX) {
+        *st |= FX_ST_ARG;
+    }
+    for (i = 0u; (i < n) && (i < FX_NMAX); i++) {
+        y[i] = fx_sub_sat(a[i], b[i], st);
+    }
+}
+
+/* ------------------------------------------------------------------------------ solve */
+
+/*
+ * Reciprocal of a non-zero pivot p as a mantissa/exponent pair: 1/p = rec * 2^(sh - 60)
+ * (p as an integer), with |p| << sh in [2^30, 2^31) and |rec| in (2^29, 2^30]. This is the
+ * solve's only divide per pivot (64/32, correctly rounded): |rec error| <= 1/2, i.e. a
+ * relative error <= 2^-30.
+ */
+static int32_t pivot_recip(int32_t p, uint32_t *sh)
+{
+    uint32_t m = fx_uabs(p);
+    uint32_t s = 0u;
+    uint32_t i;
+    uint64_t rec;
+    for (i = 0u; (i < 31u) && (m < ((uint32_t)1 << 30)); i++) {
+        m <<= 1;
+        s++;
+    }
+    rec = fx_udiv_rnd64((uint64_t)1 << 60, (uint64_t)m);
+    *sh = s;
+    return (p < 0) ? -(int32_t)rec : (int32_t)rec;
+}
+
+/* Extra fraction bits carried by the refinement term, so the final result is rounded once. */
+#define SOLVE_REFINE_FRAC 16u
+
+/*
+ * q ~= round(s / p * 2^frac) using p's reciprocal: s is first rounded to 31 significant bits
+ * (s_hi = s / 2^e), so the product with rec fits int64. Relative error before the final
+ * rounding <= 2^-30 + 2^-31. Returns false when |q| would exceed 2^40 (caller saturates).
+ */
+static bool recip_mul(int64_t s, int32_t rec, uint32_t sh, uint32_t frac, int64_t *q)
+{
+    uint64_t m = (s < 0) ? ((uint64_t)0 - (uint64_t)s) : (uint64_t)s;
+    uint32_t e = 0u;
+    uint32_t i;
+    int32_t t;
+    bool ok = true;
+    fx_status_t ignore = 0u;  /* shifts below are in range by construction */
+    for (i = 0u; (i < 33u) && (m >= ((uint64_t)1 << 31)); i++) {
+        m >>= 1;
+        e++;
+    }
+    t = 60 - (int32_t)sh - (int32_t)e - (int32_t)frac;
+    /* With e > 0, |s_hi| >= 2^30 and |rec| > 2^29, so |q| >= 2^(59 - t): t < 19 means > 2^40. */
+    if (((e > 0u) && (t < 19)) || (t < 0)) {
+        ok = false;
+        *q = 0;
+    } else {
+        int64_t s_hi = fx_shr_rnd64(s, e, &ignore);
+        *q = fx_shr_rnd64(s_hi * (int64_t)rec, (uint32_t)t, &ignore);
+    }
+    return ok;
+}
+
+/*
+ * x = round(s / p), saturated to int32. x0 comes from the reciprocal; the exact residual
+ * s - p x0 then gives the remaining fraction with SOLVE_REFINE_FRAC extra bits, and the sum
+ * is rounded once. The result is correctly rounded except within ~2^-14 LSB of a tie.
+ */
+static int32_t div_by_pivot(int64_t s, int32_t p, int32_t rec, uint32_t sh, fx_status_t *st)
+{
+    int64_t x0;
+    int32_t r;
+    bool neg = (s < 0) != (p < 0);
+    if ((!recip_mul(s, rec, sh, 0u, &x0)) || (x0 >= ((int64_t)1 << 32)) || (x0 <= -((int64_t)1 << 32))) {
+        *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
+        r = neg ? INT32_MIN : INT32_MAX;
+    } else {
+        fx_status_t acc = 0u;
+        int64_t cf = 0;
+        /* |p * x0| < 2^63 and s ~= p * x0, so the residual is small and exact. */
+        int64_t resid = fx_add64_sat(s, -((int64_t)p * x0), &acc);
+        if ((acc != 0u) || (!recip_mul(resid, rec, sh, SOLVE_REFINE_FRAC, &cf)) ||
+            (cf > ((int64_t)1 << 40)) || (cf < -((int64_t)1 << 40))) {
+            *st |= FX_ST_ACC_OVF;
+            cf = 0;
+        }
+        r = fx_rshift_sat((x0 * ((int64_t)1 << SOLVE_REFINE_FRAC)) + cf, SOLVE_REFINE_FRAC, st);
+    }
+    return r;
+}
+
+void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+              uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
+{
+    uint32_t i;
+    uint32_t j;
+    uint32_t k;
+    bool fail = false;
+    /* Back substitution scales b from qb to qa + qx; keep b * 2^e inside int64 (e <= 31). */
+    if ((n < 1u) || (n > FX_SOLVE_NMAX) || (qa > FX_Q_MAX) || (qb > FX_Q_MAX) || (qx > FX_Q_MAX) ||
+        (qb > (qa + qx)) || ((qa + qx - qb) > 31u)) {
+        *st |= FX_ST_ARG;
+        fail = true;
+    }
+    for (i = 0u; (!fail) && (i < (n * n)); i++) {
+        ws->a[i] = a[i];
+    }
+    for (i = 0u; (!fail) && (i < n); i++) {
+        ws->b[i] = b[i];
+    }
+    /* Elimination with partial pivoting; ties go to the lowest row index (deterministic). */
+    for (k = 0u; (!fail) && (k < n); k++) {
+        uint32_t p = k;
+        uint32_t best = fx_uabs(ws->a[(k * n) + k]);
+        uint32_t sh = 0u;
+        for (i = k + 1u; i < n; i++) {
+            uint32_t v = fx_uabs(ws->a[(i * n) + k]);
+            if (v > best) {
+                best = v;
+                p = i;
+            }
+        }
+        if (p != k) {
+            for (j = 0u; j < n; j++) {
+                int32_t t = ws->a[(k * n) + j];
+                ws->a[(k * n) + j] = ws->a[(p * n) + j];
+                ws->a[(p * n) + j] = t;
+            }
+            {
+                int32_t t = ws->b[k];
+                ws->b[k] = ws->b[p];
+                ws->b[p] = t;
+            }
+        }
+        ws->perm[k] = (uint8_t)p;
+        ws->pivot[k] = ws->a[(k * n) + k];
+        if ((best == 0u) || ((int64_t)best < (int64_t)pivot_min)) {
+            *st |= FX_ST_SINGULAR;
+            fail = true;
+        } else {
+            ws->rec[k] = pivot_recip(ws->pivot[k], &sh);
+            ws->rec_sh[k] = (uint8_t)sh;
+            for (i = k + 1u; i < n; i++) {
+                /* Multiplier l = a_ik / a_kk in q30; |l| <= 1 (+1 LSB) by pivoting. */
+                int64_t l = fx_shr_rnd64((int64_t)ws->a[(i * n) + k] * (int64_t)ws->rec[k], 30u - sh, st);
+                ws->a[(i * n) + k] = 0;
+                for (j = k + 1u; j < n; j++) {
+                    /* a_ij - l a_kj formed exactly at 30 extra bits, rounded once. */
+                    int64_t v = ((int64_t)ws->a[(i * n) + j] * ((int64_t)1 << 30)) - (l * (int64_t)ws->a[(k * n) + j]);
+                    ws->a[(i * n) + j] = fx_rshift_sat(v, 30u, st);
+                }
+                {
+                    int64_t v = ((int64_t)ws->b[i] * ((int64_t)1 << 30)) - (l * (int64_t)ws->b[k]);
+                    ws->b[i] = fx_rshift_sat(v, 30u, st);
+                }
+            }
+        }
+    }
+    /* Back substitution: x_i = (b_i - sum_{j>i} a_ij x_j) / a_ii, accumulated exactly in
+       q(qa + qx), then divided through the pivot's reciprocal. */
+    for (k = 0u; (!fail) && (k < n); k++) {
+        uint32_t ii = n - 1u - k;
+        fx_status_t acc = 0u;
+        int64_t s = (int64_t)ws->b[ii] * ((int64_t)1 << (qa + qx - qb));
+        for (j = ii + 1u; j < n; j++) {
+            s = fx_add64_sat(s, -((int64_t)ws->a[(ii * n) + j] * (int64_t)x[j]), &acc);
+        }
+        *st |= acc;
+        x[ii] = div_by_pivot(s, ws->pivot[ii], ws->rec[ii], ws->rec_sh[ii], st);
+    }
+    if (fail) {
+        for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
+            x[i] = 0;
+        }
+    }
+}
