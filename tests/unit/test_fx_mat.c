@@ -1,0 +1,229 @@
+/*
+ * Vector/matrix kernels and fx_solve: exact integer properties, on host and target.
+ * Reference sums are formed here in int64 with operands small enough (< 2^28) that the exact
+ * sum of n <= 8 products cannot overflow, then rounded with C division (independent of fx).
+ */
+#include "fx.h"
+#include "ut.h"
+
+#define NELEM(a) (sizeof(a) / sizeof((a)[0]))
+
+static int64_t ref_rnd(int64_t p, uint32_t n)
+{
+    int64_t d;
+    int64_t q;
+    int64_t r;
+    if (n == 0u) {
+        return p;
+    }
+    d = (int64_t)1 << n;
+    q = p / d;
+    r = p % d;
+    r = (r < 0) ? -r : r;
+    if (r >= d - r) {
+        q += (p < 0) ? -1 : 1;
+    }
+    return q;
+}
+
+static int32_t small(uint64_t *s)
+{
+    return (int32_t)((int64_t)(ut_rng_next(s) >> 36) - ((int64_t)1 << 27));
+}
+
+UT_TEST(dot_matvec_matmul_random)
+{
+    uint64_t seed = 21u;
+    uint32_t it;
+    for (it = 0u; it < 300u; it++) {
+        int32_t a[64];
+        int32_t b[64];
+        int32_t y[8];
+        int32_t c[64];
+        uint32_t n = 1u + (it % 8u);
+        uint32_t k = 1u + ((it / 8u) % 8u);
+        uint32_t m = 1u + ((it / 3u) % 8u);
+        uint32_t i;
+        uint32_t j;
+        uint32_t l;
+        fx_status_t st = 0u;
+        for (i = 0u; i < 64u; i++) {
+            a[i] = small(&seed);
+            b[i] = small(&seed);
+        }
+        {
+            int64_t s = 0;
+            for (i = 0u; i < n; i++) {
+                s += (int64_t)a[i] * b[i];
+            }
+            UT_CHECK_EQ(fx_dot(a, 28u, b, 29u, n, 30u, &st), ref_rnd(s, 27u));
+        }
+        fx_matvec(a, 28u, b, 28u, n, k, y, 28u, &st);
+        for (i = 0u; i < n; i++) {
+            int64_t s = 0;
+            for (j = 0u; j < k; j++) {
+                s += (int64_t)a[i * k + j] * b[j];
+            }
+            UT_CHECK_EQ(y[i], ref_rnd(s, 28u));
+        }
+        fx_matmul(a, 30u, b, 30u, n, k, m, c, 31u, &st);
+        for (i = 0u; i < n; i++) {
+            for (j = 0u; j < m; j++) {
+                int64_t s = 0;
+                for (l = 0u; l < k; l++) {
+                    s += (int64_t)a[i * k + l] * b[l * m + j];
+                }
+                UT_CHECK_EQ(c[i * m + j], ref_rnd(s, 29u));
+            }
+        }
+        UT_CHECK_UEQ(st, 0u);
+    }
+}
+
+UT_TEST(accumulator_overflow)
+{
+    /* Two products of 2^62 already leave int64 (spec 00 §1.6 adversarial rows). */
+    static const int32_t mn[4] = {INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN};
+    static const int32_t mx[2] = {INT32_MAX, INT32_MAX};
+    int32_t y[2];
+    fx_status_t st = 0u;
+    UT_EQ(fx_dot(mn, 31u, mn, 31u, 1u, 31u, &st), INT32_MAX);   /* (-1)(-1) = 1 saturates */
+    UT_UEQ(st, FX_ST_SAT_HI);
+    st = 0u;
+    UT_EQ(fx_dot(mn, 0u, mn, 0u, 2u, 0u, &st), INT32_MAX);
+    UT_TRUE((st & FX_ST_ACC_OVF) != 0u);
+    st = 0u;
+    /* 2 (-2^31)(2^31 - 1) = -2^63 + 2^32 fits int64: no ACC_OVF, only the int32 clamp. */
+    UT_EQ(fx_dot(mn, 0u, mx, 0u, 2u, 0u, &st), INT32_MIN);
+    UT_UEQ(st, FX_ST_SAT_LO);
+    st = 0u;
+    /* Same sum in q31 x q31 -> q31: -2 + 2^-30 is below -1, saturates LO. */
+    UT_EQ(fx_dot(mn, 31u, mx, 31u, 2u, 31u, &st), INT32_MIN);
+    UT_UEQ(st, FX_ST_SAT_LO);
+    st = 0u;
+    /* A request for more result bits than the product has is an argument error. */
+    UT_EQ(fx_dot(mn, 0u, mx, 0u, 2u, 31u, &st), 0);
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    fx_matvec(mn, 0u, mn, 0u, 2u, 2u, y, 0u, &st);
+    UT_TRUE((st & FX_ST_ACC_OVF) != 0u);
+    UT_EQ(y[0], INT32_MAX);
+    UT_EQ(y[1], INT32_MAX);
+}
+
+UT_TEST(kernel_args)
+{
+    int32_t v[9] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+    int32_t y[9] = {7, 7, 7, 7, 7, 7, 7, 7, 7};
+    fx_status_t st = 0u;
+    UT_EQ(fx_dot(v, 10u, v, 10u, 9u, 10u, &st), 0);     /* n > FX_NMAX */
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    UT_EQ(fx_dot(v, 10u, v, 10u, 2u, 21u, &st), 0);     /* qr > qa + qb */
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    fx_matvec(v, 0u, v, 0u, 2u, 0u, y, 0u, &st);         /* zero columns */
+    UT_UEQ(st, FX_ST_ARG);
+    UT_EQ(y[0], 0);
+    UT_EQ(y[1], 0);
+    UT_EQ(y[2], 7);                                      /* nothing beyond rows written */
+    st = 0u;
+    fx_vadd(v, v, 3u, y, &st);
+    UT_EQ(y[2], 6);
+    fx_vsub(v, y, 3u, y, &st);
+    UT_EQ(y[2], -3);
+    UT_UEQ(st, 0u);
+}
+
+UT_TEST(solve_exact_cases)
+{
+    fx_solve_ws_t ws;
+    int32_t x[4];
+    fx_status_t st = 0u;
+    /* Permutation matrix (q28): x is b permuted, exactly. */
+    static const int32_t p4[16] = {0, 0, 1 << 28, 0, 1 << 28, 0, 0, 0, 0, 0, 0, 1 << 28, 0, 1 << 28, 0, 0};
+    static const int32_t b4[4] = {11, -22, 33, -44};
+    /* [[2, 1], [1, 3]] x = [3, 5] -> x = [0.8, 1.4] */
+    static const int32_t a2[4] = {2 << 28, 1 << 28, 1 << 28, 3 << 28};
+    static const int32_t b2[2] = {3 << 28, 5 << 28};
+    /* Singular: second row twice the first. */
+    static const int32_t s2[4] = {1 << 27, 1 << 26, 1 << 28, 1 << 27};
+    fx_solve(&ws, p4, 28u, b4, 28u, 4u, x, 28u, 1 << 18, &st);
+    UT_UEQ(st, 0u);
+    UT_EQ(x[0], -22);
+    UT_EQ(x[1], -44);
+    UT_EQ(x[2], 11);
+    UT_EQ(x[3], 33);
+    fx_solve(&ws, a2, 28u, b2, 28u, 2u, x, 29u, 1 << 18, &st);
+    UT_UEQ(st, 0u);
+    UT_EQ(x[0], 429496730);    /* 0.8 * 2^29 = 429496729.6 */
+    UT_EQ(x[1], 751619277);    /* 1.4 * 2^29 = 751619276.8 */
+    x[0] = 5;
+    x[1] = 5;
+    fx_solve(&ws, s2, 28u, b2, 28u, 2u, x, 28u, 1 << 18, &st);
+    UT_UEQ(st, FX_ST_SINGULAR);
+    UT_EQ(x[0], 0);
+    UT_EQ(x[1], 0);
+    st = 0u;
+    fx_solve(&ws, a2, 28u, b2, 28u, 5u, x, 28u, 1, &st);
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    /* Pivot threshold is exclusive below: |pivot| == pivot_min is accepted. */
+    {
+        static const int32_t one[1] = {1000};
+        static const int32_t bb[1] = {3000};
+        fx_solve(&ws, one, 0u, bb, 0u, 1u, x, 0u, 1000, &st);
+        UT_UEQ(st, 0u);
+        UT_EQ(x[0], 3);
+        fx_solve(&ws, one, 0u, bb, 0u, 1u, x, 0u, 1001, &st);
+        UT_UEQ(st, FX_ST_SINGULAR);
+        UT_EQ(x[0], 0);
+    }
+}
+
+/* Odd symmetry: solving with -b gives exactly -x (the rounding rule is odd). */
+UT_TEST(solve_symmetry_and_determinism)
+{
+    uint64_t seed = 8u;
+    uint32_t it;
+    for (it = 0u; it < 500u; it++) {
+        fx_solve_ws_t ws;
+        int32_t a[16];
+        int32_t b[4];
+        int32_t nb[4];
+        int32_t x1[4];
+        int32_t x2[4];
+        int32_t x3[4];
+        uint32_t n = 1u + (it % 4u);
+        uint32_t i;
+        fx_status_t s1 = 0u;
+        fx_status_t s2 = 0u;
+        fx_status_t s3 = 0u;
+        for (i = 0u; i < n * n; i++) {
+            a[i] = small(&seed) / 8;   /* |off-diagonal| < 2^24: diagonally dominant, no saturation */
+        }
+        for (i = 0u; i < n; i++) {
+            a[i * n + i] += (int32_t)1 << 28;   /* diagonally weighted, well conditioned */
+            b[i] = small(&seed);
+            nb[i] = -b[i];
+        }
+        fx_solve(&ws, a, 28u, b, 28u, n, x1, 28u, 1 << 18, &s1);
+        fx_solve(&ws, a, 28u, nb, 28u, n, x2, 28u, 1 << 18, &s2);
+        fx_solve(&ws, a, 28u, b, 28u, n, x3, 28u, 1 << 18, &s3);
+        for (i = 0u; i < n; i++) {
+            UT_CHECK_EQ(x2[i], -x1[i]);
+            UT_CHECK_EQ(x3[i], x1[i]);
+        }
+        UT_CHECK_UEQ(s1, 0u);
+        UT_CHECK_UEQ(s2, 0u);
+    }
+}
+
+int main(void)
+{
+    UT_CASES(cases) = {
+        UT_CASE(dot_matvec_matmul_random), UT_CASE(accumulator_overflow), UT_CASE(kernel_args),
+        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism),
+    };
+    return UT_RUN("fx_mat", cases);
+}

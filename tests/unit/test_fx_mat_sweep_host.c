@@ -1,0 +1,336 @@
+/*
+ * Host-only sweeps of the kernels and of fx_solve (spec 00 §1.6).
+ *
+ * Kernels: full-range random operands against the exact __int128 sum. Contract: when ACC_OVF is
+ * clear the result equals the correctly rounded, clamped exact sum; whenever the exact sum leaves
+ * int64, ACC_OVF is set. (ACC_OVF may also be raised when only a partial sum left int64; that is
+ * conservative and counted below.)
+ *
+ * Solve: 10^4 seeded systems with condition numbers kappa_inf in [1, 10^3], built as
+ * U diag(sigma) V^T from random orthogonal U, V in long double, quantised to q28. The reference
+ * solves the *quantised* system in long double (error ~ kappa 2^-64, negligible), so the test
+ * measures only the fixed-point solver. Bound, from the spec: |x - x_ref| <= 2 n kappa_inf LSB.
+ * Why that bound holds: the elimination rounds each updated entry once (<= 1/2 LSB of qa, i.e. a
+ * backward error of <= 2^-1 LSB per entry and step, at most n-1 steps) and back substitution
+ * rounds x_i once; a backward perturbation dA gives |dx|/|x| <= kappa |dA|/|A|, which with
+ * |A|inf ~ 1 (2^28 LSB) and |x| < 2^28 LSB is <= kappa (n - 1)/2 LSB + 1/2 LSB < 2 n kappa.
+ */
+#include "fx.h"
+#include "ut.h"
+
+#include <math.h>
+#include <stdio.h>
+
+__extension__ typedef __int128 i128;
+
+#define SYSTEMS 10000u
+#define QA 28u
+#define QX 28u
+
+static i128 o_shr(i128 v, uint32_t n)
+{
+    i128 d;
+    i128 q;
+    i128 r;
+    if (n == 0u) {
+        return v;
+    }
+    d = (i128)1 << n;
+    q = v / d;
+    r = v % d;
+    if (r < 0) {
+        r = -r;
+    }
+    if (2 * r >= d) {
+        q += (v < 0) ? -1 : 1;
+    }
+    return q;
+}
+
+static int32_t rnd32(uint64_t *s)
+{
+    uint64_t r = ut_rng_next(s);
+    return (int32_t)(uint32_t)(r >> (32u + (uint32_t)(r % 4u)));
+}
+
+UT_TEST(kernels_vs_exact)
+{
+    uint64_t seed = 1234u;
+    uint32_t it;
+    uint32_t ovf_exact = 0u;
+    uint32_t ovf_partial = 0u;
+    uint64_t checked = 0u;
+    for (it = 0u; it < 200000u; it++) {
+        int32_t a[8];
+        int32_t b[8];
+        uint32_t n = 1u + (it % 8u);
+        uint32_t i;
+        i128 s = 0;
+        i128 want;
+        fx_status_t st = 0u;
+        int32_t got;
+        uint32_t qr = (it % 5u == 0u) ? 0u : 31u;
+        for (i = 0u; i < n; i++) {
+            a[i] = rnd32(&seed);
+            b[i] = rnd32(&seed);
+            if ((it % 97u) == 0u) {
+                a[i] = INT32_MIN;   /* adversarial rows */
+                b[i] = (it % 2u) ? INT32_MIN : INT32_MAX;
+            }
+            s += (i128)a[i] * b[i];
+        }
+        got = fx_dot(a, 31u, b, 31u, n, qr, &st);
+        if (s > INT64_MAX || s < INT64_MIN) {
+            /* Saturated to an extreme; its sign is that of the first overflow (same as the exact
+               sum's whenever the products share a sign, as in the adversarial rows). */
+            UT_CHECK((st & FX_ST_ACC_OVF) != 0u);
+            UT_CHECK(got == INT32_MAX || got == INT32_MIN);
+            if ((it % 97u) == 0u) {
+                UT_CHECK_EQ(got, (s > 0) ? INT32_MAX : INT32_MIN);
+            }
+            ovf_exact++;
+        } else if ((st & FX_ST_ACC_OVF) != 0u) {
+            ovf_partial++;
+        } else {
+            want = o_shr(s, 62u - qr);
+            want = (want > INT32_MAX) ? INT32_MAX : ((want < INT32_MIN) ? INT32_MIN : want);
+            UT_CHECK_EQ(got, (int64_t)want);
+            checked++;
+        }
+    }
+    printf("fx_dot: %llu exact sums correctly rounded; %u overflowing sums all flagged ACC_OVF; "
+           "%u flagged for a transient partial-sum overflow\n",
+           (unsigned long long)checked, ovf_exact, ovf_partial);
+}
+
+/* ---------------------------------------------------------------- solve */
+
+static void rand_orth(uint64_t *seed, uint32_t n, long double q[4][4])
+{
+    uint32_t i;
+    uint32_t j;
+    uint32_t k;
+    for (i = 0u; i < n; i++) {
+        for (j = 0u; j < n; j++) {
+            q[i][j] = (long double)(int64_t)(ut_rng_next(seed) >> 11) / 4503599627370496.0L - 1.0L;
+        }
+    }
+    /* Modified Gram-Schmidt on the columns. */
+    for (j = 0u; j < n; j++) {
+        long double nrm = 0.0L;
+        for (k = 0u; k < j; k++) {
+            long double d = 0.0L;
+            for (i = 0u; i < n; i++) {
+                d += q[i][k] * q[i][j];
+            }
+            for (i = 0u; i < n; i++) {
+                q[i][j] -= d * q[i][k];
+            }
+        }
+        for (i = 0u; i < n; i++) {
+            nrm += q[i][j] * q[i][j];
+        }
+        nrm = sqrtl(nrm);
+        for (i = 0u; i < n; i++) {
+            q[i][j] /= nrm;
+        }
+    }
+}
+
+/* Long double Gauss-Jordan inverse with partial pivoting; returns false if singular. */
+static bool inv_ld(uint32_t n, long double a[4][4], long double inv[4][4])
+{
+    long double m[4][8];
+    uint32_t i;
+    uint32_t j;
+    uint32_t k;
+    for (i = 0u; i < n; i++) {
+        for (j = 0u; j < n; j++) {
+            m[i][j] = a[i][j];
+            m[i][j + n] = (i == j) ? 1.0L : 0.0L;
+        }
+    }
+    for (k = 0u; k < n; k++) {
+        uint32_t p = k;
+        for (i = k + 1u; i < n; i++) {
+            if (fabsl(m[i][k]) > fabsl(m[p][k])) {
+                p = i;
+            }
+        }
+        if (fabsl(m[p][k]) < 1e-30L) {
+            return false;
+        }
+        for (j = 0u; j < 2u * n; j++) {
+            long double t = m[k][j];
+            m[k][j] = m[p][j];
+            m[p][j] = t;
+        }
+        for (i = 0u; i < n; i++) {
+            if (i != k) {
+                long double f = m[i][k] / m[k][k];
+                for (j = 0u; j < 2u * n; j++) {
+                    m[i][j] -= f * m[k][j];
+                }
+            }
+        }
+    }
+    for (i = 0u; i < n; i++) {
+        for (j = 0u; j < n; j++) {
+            inv[i][j] = m[i][j + n] / m[i][i];
+        }
+    }
+    return true;
+}
+
+static long double norm_inf(uint32_t n, long double a[4][4])
+{
+    long double best = 0.0L;
+    uint32_t i;
+    uint32_t j;
+    for (i = 0u; i < n; i++) {
+        long double s = 0.0L;
+        for (j = 0u; j < n; j++) {
+            s += fabsl(a[i][j]);
+        }
+        best = (s > best) ? s : best;
+    }
+    return best;
+}
+
+UT_TEST(solve_conditioned_systems)
+{
+    uint64_t seed = 2024u;
+    uint32_t it;
+    uint32_t solved = 0u;
+    long double worst_ratio = 0.0L;
+    long double worst_err = 0.0L;
+    long double worst_kappa = 0.0L;
+    for (it = 0u; it < SYSTEMS; it++) {
+        uint32_t n = 1u + (it % 4u);
+        long double u[4][4];
+        long double v[4][4];
+        long double a[4][4];
+        long double aq[4][4];
+        long double ainv[4][4];
+        long double xr[4];
+        long double bq[4];
+        long double kappa_t = powl(10.0L, 3.0L * (long double)(ut_rng_next(&seed) >> 11) / 9007199254740992.0L);
+        long double amax = 0.0L;
+        long double kappa;
+        int32_t ai[16];
+        int32_t bi[4];
+        int32_t x[4];
+        fx_solve_ws_t ws;
+        fx_status_t st = 0u;
+        uint32_t i;
+        uint32_t j;
+        uint32_t k;
+        bool fits = true;
+        rand_orth(&seed, n, u);
+        rand_orth(&seed, n, v);
+        for (i = 0u; i < n; i++) {
+            for (j = 0u; j < n; j++) {
+                long double s = 0.0L;
+                for (k = 0u; k < n; k++) {
+                    long double sig = (n == 1u) ? 1.0L : powl(kappa_t, -(long double)k / (long double)(n - 1u));
+                    s += u[i][k] * sig * v[j][k];
+                }
+                a[i][j] = s;
+                amax = (fabsl(s) > amax) ? fabsl(s) : amax;
+            }
+        }
+        /* Entries scaled to |a| <= 0.9: q28 holds +-8, leaving the n-1 <= 3 headroom bits. */
+        for (i = 0u; i < n; i++) {
+            long double xt = (long double)(int64_t)(ut_rng_next(&seed) >> 11) / 4503599627370496.0L - 1.0L;
+            for (j = 0u; j < n; j++) {
+                ai[i * n + j] = (int32_t)llroundl(a[i][j] / amax * 0.9L * 268435456.0L);
+                aq[i][j] = (long double)ai[i * n + j] / 268435456.0L;
+            }
+            xr[i] = xt;
+        }
+        for (i = 0u; i < n; i++) {
+            long double s = 0.0L;
+            for (j = 0u; j < n; j++) {
+                s += aq[i][j] * xr[j];
+            }
+            bi[i] = (int32_t)llroundl(s * 268435456.0L);
+            bq[i] = (long double)bi[i] / 268435456.0L;
+        }
+        if (!inv_ld(n, aq, ainv)) {
+            continue;
+        }
+        kappa = norm_inf(n, aq) * norm_inf(n, ainv);
+        /* Reference x of the quantised system: x = inv(Aq) bq in long double. */
+        for (i = 0u; i < n; i++) {
+            long double s = 0.0L;
+            for (j = 0u; j < n; j++) {
+                s += ainv[i][j] * bq[j];
+            }
+            xr[i] = s * 268435456.0L;
+            fits = fits && (fabsl(xr[i]) < 2.0e9L);
+        }
+        if (!fits) {
+            continue;
+        }
+        fx_solve(&ws, ai, QA, bi, QA, n, x, QX, 1 << 18, &st);
+        UT_CHECK_UEQ(st, 0u);
+        for (i = 0u; i < n; i++) {
+            long double err = fabsl((long double)x[i] - xr[i]);
+            long double bound = 2.0L * (long double)n * kappa;
+            if (!(err <= bound)) {
+                UT_CHECK_EQ((int64_t)err, (int64_t)bound);
+                printf("  system %u n=%u kappa=%.1Lf err=%.2Lf LSB\n", it, n, kappa, err);
+            }
+            if (err / ((long double)n * kappa) > worst_ratio) {
+                worst_ratio = err / ((long double)n * kappa);
+            }
+            if (err > worst_err) {
+                worst_err = err;
+                worst_kappa = kappa;
+            }
+        }
+        solved++;
+    }
+    UT_CHECK(solved > (SYSTEMS * 9u) / 10u);
+    printf("fx_solve: %u systems (n = 1..4, kappa_inf 1..1e3): max |x - x_ref| = %.2Lf LSB (at kappa %.0Lf); "
+           "max err / (n kappa) = %.3Lf (bound 2)\n", solved, worst_err, worst_kappa, worst_ratio);
+}
+
+UT_TEST(solve_singular_and_near_singular)
+{
+    uint64_t seed = 77u;
+    uint32_t it;
+    for (it = 0u; it < 2000u; it++) {
+        uint32_t n = 2u + (it % 3u);
+        int32_t a[16];
+        int32_t b[4];
+        int32_t x[4] = {9, 9, 9, 9};
+        uint32_t i;
+        uint32_t j;
+        fx_solve_ws_t ws;
+        fx_status_t st = 0u;
+        for (i = 0u; i < n * n; i++) {
+            a[i] = (int32_t)(uint32_t)(ut_rng_next(&seed) >> 36) - (1 << 27);
+        }
+        for (i = 0u; i < n; i++) {
+            b[i] = (int32_t)(uint32_t)(ut_rng_next(&seed) >> 36) - (1 << 27);
+        }
+        /* Last row = first row (+ a perturbation below pivot_min when it is odd). */
+        for (j = 0u; j < n; j++) {
+            a[(n - 1u) * n + j] = a[j] + (int32_t)((it & 1u) * (j == (n - 1u) ? 100u : 0u));
+        }
+        fx_solve(&ws, a, 28u, b, 28u, n, x, 28u, 1 << 18, &st);
+        UT_CHECK_UEQ(st & FX_ST_SINGULAR, FX_ST_SINGULAR);
+        for (i = 0u; i < n; i++) {
+            UT_CHECK_EQ(x[i], 0);
+        }
+    }
+}
+
+int main(void)
+{
+    UT_CASES(cases) = {
+        UT_CASE(kernels_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_singular_and_near_singular),
+    };
+    return UT_RUN("fx_mat_sweep", cases);
+}
