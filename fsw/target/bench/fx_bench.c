@@ -1,0 +1,446 @@
+/*
+ * fx_bench.c — instruction counts of the fx kernels on the emulated Cortex-M (spec 00 §6.4, §9).
+ * Run by tools/bench/fx_insn.py under QEMU -icount shift=3: virtual time advances 8 ns per
+ * instruction and MPS2's SysTick counts the 25 MHz processor clock, so one tick = 5
+ * instructions.
+ *
+ * Exact counts despite the 5-instruction tick. The bracket (bench_bracket5 in fx_bench_asm.S,
+ * hand-written so its instructions are known) reads SYST_CVR, calls the function five times
+ * with the same argument, executes 4 NOPs and reads SYST_CVR again. Between the two reads
+ * exactly 5 * (f + 3) instructions execute, f being the callee's, so the tick difference is
+ * exactly f + 3 whatever the phase p of the tick: floor((p + 5k) / 5) - floor(p / 5) = k.
+ * The calibration section checks this with NOP sleds of known length at all five phases.
+ *
+ * Per sample the kernel is called from a wrapper that loads its arguments from the sample
+ * arrays and stores its results to volatile sinks. Each wrapper has a twin that calls a null
+ * function of the same prototype instead (a lone `bx lr` in fx_bench_asm.S), so
+ *   kernel = w(kernel) - w(null) + 1   instructions from the kernel's entry through its return
+ *   call   = w(kernel) - w(empty)      the same plus argument setup and result stores
+ * where w() is the bracket value and `empty` is a wrapper that only returns.
+ *
+ * Output (parsed by tools/bench/fx_insn.py):
+ *   fx_bench 1 cpuid <hex>
+ *   cal <N> <phase> <value>        value must equal N + 4 (an N-NOP sled is N + 1 instructions)
+ *   tick <N> <ticks>               one plain bracket around an N-NOP sled: ticks ~ N / 5
+ *   empty <value>                  must be 4
+ *   k <kernel> <sample> <kernel insns> <call insns>
+ *   end
+ */
+#include <stdint.h>
+#include <stddef.h>
+#include "board.h"
+#include "fx.h"
+
+typedef void (*bench_fn_t)(uint32_t sample);
+
+/* fx_bench_asm.S */
+uint32_t bench_bracket5(bench_fn_t fn, uint32_t sample);
+uint32_t bench_bracket1(bench_fn_t fn, uint32_t sample);
+void bench_sled_0(uint32_t sample);
+void bench_sled_1(uint32_t sample);
+void bench_sled_2(uint32_t sample);
+void bench_sled_3(uint32_t sample);
+void bench_sled_4(uint32_t sample);
+void bench_sled_5(uint32_t sample);
+void bench_sled_7(uint32_t sample);
+void bench_sled_100(uint32_t sample);
+void bench_sled_1000(uint32_t sample);
+void bench_sled_10000(uint32_t sample);
+void bench_sled_50000(uint32_t sample);
+
+#define BENCH_SAMPLES 32u
+#define BENCH_PHASES  5u
+#define BENCH_CPUID   0xE000ED00u
+
+/* ------------------------------------------------------------------ output */
+
+static void bench_put_u32(uint32_t v)
+{
+    static const char digits[10] = { '0', '1', '2', '3', '4', '5', '6', '7', '8', '9' };
+    char buf[11];
+    uint32_t i = 10u;
+    uint32_t r = v;
+
+    buf[10] = '\0';
+    do {
+        i--;
+        buf[i] = digits[r % 10u];
+        r /= 10u;
+    } while ((r != 0u) && (i > 0u));
+    board_console_write(&buf[i]);
+}
+
+static void bench_put_i32(int32_t v)
+{
+    if (v < 0) {
+        board_console_write("-");
+        bench_put_u32(0u - (uint32_t)v);
+    } else {
+        bench_put_u32((uint32_t)v);
+    }
+}
+
+static void bench_put_kv(const char *key, uint32_t a, uint32_t b)
+{
+    board_console_write(key);
+    board_console_write(" ");
+    bench_put_u32(a);
+    board_console_write(" ");
+    bench_put_u32(b);
+    board_console_write("\n");
+}
+
+/* ------------------------------------------------------------------ inputs */
+
+static uint64_t bench_rng(void)
+{
+    static uint64_t state = UINT64_C(0x5EED00F1BE7C4A11);   /* splitmix64, fixed seed */
+    uint64_t z;
+
+    state += UINT64_C(0x9E3779B97F4A7C15);
+    z = state;
+    z = (z ^ (z >> 30)) * UINT64_C(0xBF58476D1CE4E5B9);
+    z = (z ^ (z >> 27)) * UINT64_C(0x94D049BB133111EB);
+    return z ^ (z >> 31);
+}
+
+static uint32_t bench_u32(void)
+{
+    return (uint32_t)(bench_rng() >> 32);
+}
+
+static int32_t bench_signed(uint32_t m)
+{
+    return ((bench_u32() & 1u) != 0u) ? -(int32_t)m : (int32_t)m;
+}
+
+/* Random int32 of random magnitude: |v| < 2^b, b uniform in [1, 31]. */
+static int32_t bench_i32_mag(void)
+{
+    uint32_t shift = 1u + (bench_u32() % 31u);   /* 1..31 */
+    return bench_signed(bench_u32() >> shift);
+}
+
+/* Uniform in (-2^(32 - shift), 2^(32 - shift)), shift in [1, 31]. */
+static int32_t bench_i32_range(uint32_t shift)
+{
+    return bench_signed(bench_u32() >> shift);
+}
+
+#define Q24_ONE       16777216   /* 1.0 in q24 */
+#define PIVOT_MIN_Q24 16777      /* 0.001 in q24 */
+#define SH_Q24_1      8u         /* bench_i32_range(8u): (-1, 1) in q24 */
+#define SH_Q24_2      7u         /* (-2, 2) in q24 */
+#define SH_Q24_4      6u         /* (-4, 4) in q24 */
+#define SH_Q24_8      5u         /* (-8, 8) in q24 */
+
+typedef struct { int32_t a; int32_t b; uint32_t qa; uint32_t qb; uint32_t qr; } s_muldiv_t;
+typedef struct { int32_t a[16]; int32_t b[4]; uint32_t n; } s_solve_t;
+
+static s_muldiv_t s_mul[BENCH_SAMPLES];
+static s_muldiv_t s_div[BENCH_SAMPLES];
+static int32_t    s_sqrt[BENCH_SAMPLES];
+static uint32_t   s_sqrt_q[BENCH_SAMPLES];
+static uint64_t   s_isqrt[BENCH_SAMPLES];
+static int32_t    s_norm3[BENCH_SAMPLES][3];
+static uint32_t   s_sincos[BENCH_SAMPLES];
+static int32_t    s_atan2[BENCH_SAMPLES][2];
+static int32_t    s_dot[BENCH_SAMPLES][2][6];
+static int32_t    s_matvec_m[BENCH_SAMPLES][36];
+static int32_t    s_matvec_x[BENCH_SAMPLES][6];
+static int32_t    s_matmul[BENCH_SAMPLES][2][16];
+static s_solve_t  s_solve4[BENCH_SAMPLES];
+static s_solve_t  s_solve2[BENCH_SAMPLES];
+static uint8_t    s_crc[BENCH_SAMPLES][64];
+
+static void bench_fill_solve(s_solve_t *s, uint32_t n)
+{
+    uint32_t i;
+    uint32_t j;
+    uint32_t rot = bench_u32() % n;
+
+    /* Diagonally dominant (small kappa), rows rotated so partial pivoting has to swap. */
+    for (i = 0u; i < n; i++) {
+        uint32_t r = (i + rot) % n;
+        for (j = 0u; j < n; j++) {
+            int32_t v = bench_i32_range(SH_Q24_1);
+            if (j == i) {
+                int32_t d = ((int32_t)n * Q24_ONE) + ((v < 0) ? -v : v);
+                v = bench_signed((uint32_t)d);
+            }
+            s->a[(r * n) + j] = v;
+        }
+        s->b[i] = bench_i32_range(SH_Q24_4);
+    }
+    s->n = n;
+}
+
+static void bench_fill_edges(void)
+{
+    uint32_t j;
+
+    /* Saturation, divide by zero, domain errors, a singular system. */
+    s_mul[0].a = INT32_MIN;
+    s_mul[0].b = INT32_MIN;
+    s_mul[1].a = 0;
+    s_div[0].b = 0;
+    s_div[1].a = INT32_MIN;
+    s_div[1].b = -1;
+    s_sqrt[0] = -1;
+    s_sqrt[1] = 0;
+    s_sqrt[2] = INT32_MAX;
+    s_isqrt[0] = 0u;
+    s_isqrt[1] = UINT64_MAX;
+    for (j = 0u; j < 3u; j++) {
+        s_norm3[0][j] = INT32_MIN;
+    }
+    s_sincos[0] = 0u;
+    s_sincos[1] = 0x20000000u;   /* an octant edge */
+    s_atan2[0][0] = 0;
+    s_atan2[0][1] = 0;
+    s_atan2[1][0] = INT32_MIN;
+    s_atan2[1][1] = INT32_MIN;
+    for (j = 0u; j < 4u; j++) {
+        s_solve4[0].a[4u + j] = s_solve4[0].a[j];   /* two equal rows */
+    }
+}
+
+static void bench_fill(void)
+{
+    /* Format triples of the kind the modules use (spec 00 §2: signals sit around q14..q30). */
+    static const uint32_t fmt[4][3] = {
+        { 24u, 24u, 24u }, { 30u, 24u, 24u }, { 29u, 14u, 20u }, { 16u, 20u, 24u }
+    };
+    uint32_t i;
+    uint32_t j;
+
+    for (i = 0u; i < BENCH_SAMPLES; i++) {
+        const uint32_t *f = fmt[i % 4u];
+        s_mul[i].a = bench_i32_mag();
+        s_mul[i].b = bench_i32_mag();
+        s_mul[i].qa = f[0];
+        s_mul[i].qb = f[1];
+        s_mul[i].qr = f[2];
+        s_div[i].a = bench_i32_mag();
+        s_div[i].b = bench_i32_mag();
+        s_div[i].qa = f[0];
+        s_div[i].qb = f[1];
+        s_div[i].qr = f[2];
+        s_sqrt[i] = bench_i32_mag();
+        s_sqrt[i] = (s_sqrt[i] < 0) ? -s_sqrt[i] : s_sqrt[i];
+        s_sqrt_q[i] = f[1];
+        s_isqrt[i] = bench_rng() >> (bench_u32() % 64u);
+        for (j = 0u; j < 3u; j++) {
+            s_norm3[i][j] = bench_i32_mag();
+        }
+        s_sincos[i] = bench_u32();
+        s_atan2[i][0] = bench_i32_mag();
+        s_atan2[i][1] = bench_i32_mag();
+        for (j = 0u; j < 6u; j++) {
+            s_dot[i][0][j] = bench_i32_range(SH_Q24_8);
+            s_dot[i][1][j] = bench_i32_range(SH_Q24_8);
+            s_matvec_x[i][j] = bench_i32_range(SH_Q24_4);
+        }
+        for (j = 0u; j < 36u; j++) {
+            s_matvec_m[i][j] = bench_i32_range(SH_Q24_4);
+        }
+        for (j = 0u; j < 16u; j++) {
+            s_matmul[i][0][j] = bench_i32_range(SH_Q24_2);
+            s_matmul[i][1][j] = bench_i32_range(SH_Q24_2);
+        }
+        bench_fill_solve(&s_solve4[i], 4u);
+        bench_fill_solve(&s_solve2[i], 2u);
+        for (j = 0u; j < 64u; j++) {
+            s_crc[i][j] = (uint8_t)(bench_u32() & 0xFFu);
+        }
+    }
+    bench_fill_edges();
+}
+
+/* ------------------------------------------------------------------ wrappers and null twins */
+
+static volatile int32_t bench_sink_i;
+static volatile uint32_t bench_sink_u;
+static fx_status_t bench_st;   /* a static, not a local: keeps the wrappers' frames identical */
+static int32_t bench_out[FX_NMAX * FX_NMAX];
+static fx_solve_ws_t bench_ws;
+
+/* Null twins (fx_bench_asm.S): a lone `bx lr` each, with the kernels' prototypes. */
+int32_t  bench_null_muldiv(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_status_t *st);
+int32_t  bench_null_sqrt(int32_t a, uint32_t qa, uint32_t qr, fx_status_t *st);
+uint32_t bench_null_isqrt(uint64_t x);
+int32_t  bench_null_norm3(const int32_t v[3], fx_status_t *st);
+void     bench_null_sincos(uint32_t a_bam, int32_t *s_q30, int32_t *c_q30);
+uint32_t bench_null_atan2(int32_t y, int32_t x, fx_status_t *st);
+int32_t  bench_null_dot(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb, uint32_t n,
+                        uint32_t qr, fx_status_t *st);
+void     bench_null_matvec(const int32_t *m, uint32_t qm, const int32_t *x, uint32_t qx,
+                           uint32_t rows, uint32_t cols, int32_t *y, uint32_t qy, fx_status_t *st);
+void     bench_null_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+                           uint32_t n, uint32_t k, uint32_t m, int32_t *c, uint32_t qc, fx_status_t *st);
+void     bench_null_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+                          uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
+uint32_t bench_null_crc(uint32_t crc, const uint8_t *data, size_t len);
+
+/* One body per kernel, two callees: a twin differs from its wrapper only in the call target. */
+#define W_MULDIV(F, S, i) do { bench_st = 0u; \
+        bench_sink_i = (F)((S)[i].a, (S)[i].qa, (S)[i].b, (S)[i].qb, (S)[i].qr, &bench_st); \
+        bench_sink_u = bench_st; } while (0)
+#define W_SQRT(F, i) do { bench_st = 0u; \
+        bench_sink_i = (F)(s_sqrt[i], s_sqrt_q[i], s_sqrt_q[i], &bench_st); bench_sink_u = bench_st; } while (0)
+#define W_NORM3(F, i) do { bench_st = 0u; \
+        bench_sink_i = (F)(s_norm3[i], &bench_st); bench_sink_u = bench_st; } while (0)
+#define W_ATAN2(F, i) do { bench_st = 0u; \
+        bench_sink_u = (F)(s_atan2[i][0], s_atan2[i][1], &bench_st); bench_sink_i = (int32_t)bench_st; } while (0)
+#define W_DOT(F, i) do { bench_st = 0u; \
+        bench_sink_i = (F)(s_dot[i][0], 24u, s_dot[i][1], 24u, 6u, 24u, &bench_st); bench_sink_u = bench_st; } while (0)
+#define W_MATVEC(F, i) do { bench_st = 0u; \
+        (F)(s_matvec_m[i], 24u, s_matvec_x[i], 24u, 6u, 6u, bench_out, 24u, &bench_st); \
+        bench_sink_u = bench_st; } while (0)
+#define W_MATMUL(F, i) do { bench_st = 0u; \
+        (F)(s_matmul[i][0], 24u, s_matmul[i][1], 24u, 4u, 4u, 4u, bench_out, 24u, &bench_st); \
+        bench_sink_u = bench_st; } while (0)
+#define W_SOLVE(F, S, i) do { bench_st = 0u; \
+        (F)(&bench_ws, (S)[i].a, 24u, (S)[i].b, 24u, (S)[i].n, bench_out, 24u, PIVOT_MIN_Q24, &bench_st); \
+        bench_sink_u = bench_st; } while (0)
+
+static void bk_mul(uint32_t i)      { W_MULDIV(fx_mul, s_mul, i); }
+static void bn_mul(uint32_t i)      { W_MULDIV(bench_null_muldiv, s_mul, i); }
+static void bk_div(uint32_t i)      { W_MULDIV(fx_div, s_div, i); }
+static void bn_div(uint32_t i)      { W_MULDIV(bench_null_muldiv, s_div, i); }
+static void bk_sqrt(uint32_t i)     { W_SQRT(fx_sqrt, i); }
+static void bn_sqrt(uint32_t i)     { W_SQRT(bench_null_sqrt, i); }
+static void bk_isqrt(uint32_t i)    { bench_sink_u = fx_isqrt64(s_isqrt[i]); }
+static void bn_isqrt(uint32_t i)    { bench_sink_u = bench_null_isqrt(s_isqrt[i]); }
+static void bk_norm3(uint32_t i)    { W_NORM3(fx_norm3, i); }
+static void bn_norm3(uint32_t i)    { W_NORM3(bench_null_norm3, i); }
+static void bk_sincos(uint32_t i)   { fx_sincos(s_sincos[i], &bench_out[0], &bench_out[1]); }
+static void bn_sincos(uint32_t i)   { bench_null_sincos(s_sincos[i], &bench_out[0], &bench_out[1]); }
+static void bk_atan2(uint32_t i)    { W_ATAN2(fx_atan2_bam, i); }
+static void bn_atan2(uint32_t i)    { W_ATAN2(bench_null_atan2, i); }
+static void bk_dot(uint32_t i)      { W_DOT(fx_dot, i); }
+static void bn_dot(uint32_t i)      { W_DOT(bench_null_dot, i); }
+static void bk_matvec(uint32_t i)   { W_MATVEC(fx_matvec, i); }
+static void bn_matvec(uint32_t i)   { W_MATVEC(bench_null_matvec, i); }
+static void bk_matmul(uint32_t i)   { W_MATMUL(fx_matmul, i); }
+static void bn_matmul(uint32_t i)   { W_MATMUL(bench_null_matmul, i); }
+static void bk_solve4(uint32_t i)   { W_SOLVE(fx_solve, s_solve4, i); }
+static void bn_solve4(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve4, i); }
+static void bk_solve2(uint32_t i)   { W_SOLVE(fx_solve, s_solve2, i); }
+static void bn_solve2(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve2, i); }
+static void bk_crc(uint32_t i)      { bench_sink_u = fx_crc32(0u, s_crc[i], 64u); }
+static void bn_crc(uint32_t i)      { bench_sink_u = bench_null_crc(0u, s_crc[i], 64u); }
+
+static void bench_empty(uint32_t i)
+{
+    (void)i;
+}
+
+typedef struct {
+    const char *name;
+    bench_fn_t kernel;
+    bench_fn_t twin;
+} bench_kernel_t;
+
+/* ------------------------------------------------------------------ calibration */
+
+typedef struct {
+    bench_fn_t fn;
+    uint32_t n;
+} bench_sled_t;
+
+static void bench_calibrate(void)
+{
+    static const bench_sled_t sleds[] = {
+        { bench_sled_0, 0u }, { bench_sled_1, 1u }, { bench_sled_2, 2u }, { bench_sled_3, 3u },
+        { bench_sled_4, 4u }, { bench_sled_5, 5u }, { bench_sled_7, 7u }, { bench_sled_100, 100u },
+        { bench_sled_1000, 1000u },
+    };
+    /* Run just before a bracket, they shift the tick phase by 0..4 instructions. */
+    static const bench_fn_t phase[BENCH_PHASES] = {
+        bench_sled_0, bench_sled_1, bench_sled_2, bench_sled_3, bench_sled_4
+    };
+    size_t i;
+    uint32_t ph;
+
+    for (i = 0u; i < (sizeof(sleds) / sizeof(sleds[0])); i++) {
+        for (ph = 0u; ph < BENCH_PHASES; ph++) {
+            bench_fn_t fn = sleds[i].fn;
+            uint32_t v;
+            phase[ph](0u);
+            v = bench_bracket5(fn, 0u);
+            board_console_write("cal ");
+            bench_put_u32(sleds[i].n);
+            board_console_write(" ");
+            bench_put_u32(ph);
+            board_console_write(" ");
+            bench_put_u32(v);
+            board_console_write("\n");
+        }
+    }
+    for (ph = 0u; ph < BENCH_PHASES; ph++) {
+        uint32_t t0;
+        uint32_t t1;
+        uint32_t t2;
+        phase[ph](0u);
+        t0 = bench_bracket1(bench_sled_0, 0u);
+        t1 = bench_bracket1(bench_sled_10000, 0u);
+        t2 = bench_bracket1(bench_sled_50000, 0u);
+        bench_put_kv("tick", 0u, t0);
+        bench_put_kv("tick", 10000u, t1);
+        bench_put_kv("tick", 50000u, t2);
+    }
+}
+
+/* ------------------------------------------------------------------ main */
+
+int main(void)
+{
+    static const bench_kernel_t kernels[] = {
+        { "fx_mul", bk_mul, bn_mul },
+        { "fx_div", bk_div, bn_div },
+        { "fx_sqrt", bk_sqrt, bn_sqrt },
+        { "fx_isqrt64", bk_isqrt, bn_isqrt },
+        { "fx_norm3", bk_norm3, bn_norm3 },
+        { "fx_sincos", bk_sincos, bn_sincos },
+        { "fx_atan2_bam", bk_atan2, bn_atan2 },
+        { "fx_dot_n6", bk_dot, bn_dot },
+        { "fx_matvec_6x6", bk_matvec, bn_matvec },
+        { "fx_matmul_4x4", bk_matmul, bn_matmul },
+        { "fx_solve_n4", bk_solve4, bn_solve4 },
+        { "fx_solve_n2", bk_solve2, bn_solve2 },
+        { "fx_crc32_64B", bk_crc, bn_crc },
+    };
+    size_t k;
+    uint32_t i;
+    uint32_t empty = bench_bracket5(bench_empty, 0u);
+
+    board_console_write("fx_bench 1 cpuid ");
+    board_console_hex(*board_reg32(BENCH_CPUID));
+    board_console_write("\n");
+    bench_calibrate();
+    board_console_write("empty ");
+    bench_put_u32(empty);
+    board_console_write("\n");
+    bench_fill();
+    for (k = 0u; k < (sizeof(kernels) / sizeof(kernels[0])); k++) {
+        const bench_kernel_t *bk = &kernels[k];
+        for (i = 0u; i < BENCH_SAMPLES; i++) {
+            bench_fn_t fk = bk->kernel;
+            bench_fn_t fn = bk->twin;
+            uint32_t wk = bench_bracket5(fk, i);
+            uint32_t wn = bench_bracket5(fn, i);
+            board_console_write("k ");
+            board_console_write(bk->name);
+            board_console_write(" ");
+            bench_put_u32(i);
+            board_console_write(" ");
+            bench_put_i32((int32_t)wk - (int32_t)wn + 1);
+            board_console_write(" ");
+            bench_put_i32((int32_t)wk - (int32_t)empty);
+            board_console_write("\n");
+        }
+    }
+    board_console_write("end\n");
+    return 0;
+}

@@ -1,0 +1,314 @@
+#!/usr/bin/env python3
+"""Instruction counts of the fx kernels on the emulated Cortex-M (spec 00 §6.4, §9).
+
+    tools/bench/fx_insn.py [BUILD_DIR ...] [--out-dir bench] [--reps 5]
+
+Builds nothing: it runs <BUILD_DIR>/fsw/target/fx_bench.elf (from fsw/target/bench/fx_bench.c,
+part of every cortex-m3/m4 build) under `qemu-system-arm -icount shift=3` through
+tools/qemu-run.sh, and writes <out-dir>/fx_insn.md and <out-dir>/fx_insn.json. BUILD_DIR
+defaults to build/cortex-m3; give several (e.g. build/cortex-m3 build/cortex-m4) for one column
+per board. The QEMU machine comes from the build's toolchain file (m3 -> mps2-an385,
+m4 -> mps2-an386) unless --machine is given.
+
+Method (details in fx_bench.c): -icount shift=3 advances virtual time 8 ns per instruction and
+MPS2's SysTick counts 25 MHz, so 1 tick = 5 instructions. The bench's hand-written bracket
+makes the count exact rather than +-5: five identical calls plus 4 NOPs between the two SysTick
+reads. This script checks, and the report records:
+  * calibration: NOP sleds of N = 0..1000 give exactly N + 4 at all five tick phases;
+  * ticks per instruction: a plain bracket around 10 000 / 50 000 NOPs gives N / 5 ticks;
+  * every null twin (bench_null_*) is a single 16-bit instruction (nm size 2);
+  * cross-check: QEMU's own per-instruction trace (-singlestep -d exec,nochain -dfilter) of
+    fx_crc32, a leaf, must equal the SysTick figure times the number of calls;
+  * repeatability: --reps runs must print identical counts (QEMU icount is deterministic).
+Nothing here is pass/fail for CTest; the script exits non-zero only if a check fails.
+"""
+import argparse
+import datetime
+import json
+import os
+import platform
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+QEMU_RUN = os.path.join(ROOT, "tools", "qemu-run.sh")
+ELF_REL = os.path.join("fsw", "target", "fx_bench.elf")
+CALLS_PER_BRACKET = 5
+MACHINES = {"cortex-m3": "mps2-an385", "cortex-m4": "mps2-an386"}
+
+
+def sh(cmd, **kw):
+    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kw)
+
+
+def cache_value(build, key):
+    try:
+        with open(os.path.join(build, "CMakeCache.txt"), encoding="utf-8") as f:
+            for line in f:
+                if line.startswith(key + ":"):
+                    return line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    return ""
+
+
+def board_of(build, machine):
+    tc = os.path.basename(cache_value(build, "CMAKE_TOOLCHAIN_FILE"))
+    name = next((b for b in MACHINES if b in tc), None)
+    if machine:
+        return name or machine, machine
+    if not name:
+        sys.exit(f"fx_insn: cannot tell the board of {build} (toolchain '{tc}'); pass --machine")
+    return name, MACHINES[name]
+
+
+def run_bench(elf, machine):
+    env = dict(os.environ, QEMU_ARGS="-icount shift=3", QEMU_TIMEOUT=os.environ.get("QEMU_TIMEOUT", "300"))
+    r = sh([QEMU_RUN, machine, elf], env=env)
+    if r.returncode != 0:
+        sys.exit(f"fx_insn: {elf} on {machine} exited {r.returncode}:\n{r.stdout[-2000:]}")
+    return r.stdout
+
+
+def parse(out):
+    d = {"cal": [], "tick": {}, "k": {}, "call": {}, "cpuid": None, "empty": None, "end": False}
+    for line in out.splitlines():
+        p = line.split()
+        if not p:
+            continue
+        if p[0] == "fx_bench" and len(p) >= 4:
+            d["cpuid"] = p[3]
+        elif p[0] == "cal" and len(p) == 4:
+            d["cal"].append(tuple(int(x) for x in p[1:]))
+        elif p[0] == "tick" and len(p) == 3:
+            d["tick"].setdefault(int(p[1]), []).append(int(p[2]))
+        elif p[0] == "empty" and len(p) == 2:
+            d["empty"] = int(p[1])
+        elif p[0] == "k" and len(p) == 5:
+            d["k"].setdefault(p[1], []).append(int(p[3]))
+            d["call"].setdefault(p[1], []).append(int(p[4]))
+        elif p[0] == "end":
+            d["end"] = True
+    return d
+
+
+def check(d):
+    errs = []
+    if not d["end"]:
+        errs.append("bench output truncated (no 'end' line)")
+    bad = [c for c in d["cal"] if c[2] != c[0] + 4]
+    if not d["cal"] or bad:
+        errs.append(f"calibration: expected N+4 at every phase, got {bad[:5]}")
+    if d["empty"] != 4:
+        errs.append(f"empty wrapper bracket is {d['empty']}, expected 4")
+    return errs
+
+
+def ticks_per_insn(d):
+    t0 = d["tick"].get(0, [])
+    res = {}
+    for n in (10000, 50000):
+        tn = d["tick"].get(n, [])
+        if tn and t0:
+            dt = [a - b for a, b in zip(tn, t0)]
+            res[n] = {"ticks": tn, "insn_per_tick": n / statistics.mean(dt)}
+    return res
+
+
+def nm_symbols(build):
+    nm = cache_value(build, "CMAKE_NM") or "arm-none-eabi-nm"
+    r = sh([nm, "-S", os.path.join(build, ELF_REL)])
+    syms = {}
+    for line in r.stdout.splitlines():
+        p = line.split()
+        if len(p) == 4:
+            syms[p[3]] = (int(p[0], 16), int(p[1], 16))
+    return syms
+
+
+def nm_range(build, sym):
+    s = nm_symbols(build).get(sym)
+    return None if s is None else (s[0], s[0] + s[1] - 1)
+
+
+def null_twin_sizes(build):
+    return {k: v[1] for k, v in nm_symbols(build).items() if k.startswith("bench_null_")}
+
+
+def trace_count(build, machine, sym):
+    """Instructions QEMU executes inside `sym` (a leaf), counted by QEMU's own exec trace."""
+    rng = nm_range(build, sym)
+    if rng is None:
+        return None, f"{sym} not found by nm"
+    with tempfile.TemporaryDirectory() as td:
+        log = os.path.join(td, "trace.log")
+        env = dict(os.environ, QEMU_ARGS=f"-singlestep -d exec,nochain -dfilter 0x{rng[0]:x}..0x{rng[1]:x} -D {log}")
+        r = sh([QEMU_RUN, machine, os.path.join(build, ELF_REL)], env=env)
+        if r.returncode != 0 or not os.path.exists(log):
+            return None, f"trace run failed ({r.returncode})"
+        n = 0
+        with open(log, encoding="utf-8", errors="replace") as f:
+            for line in f:
+                if line.startswith("Trace "):
+                    n += 1
+        return n, ""
+
+
+def stats(v):
+    return {"n": len(v), "min": min(v), "median": statistics.median(v), "max": max(v)}
+
+
+def tool_version(cmd):
+    try:
+        return sh(cmd).stdout.splitlines()[0].strip()
+    except (OSError, IndexError):
+        return "unknown"
+
+
+def machine_description():
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            m = re.search(r"model name\s*:\s*(.+)", f.read())
+            if m:
+                cpu = m.group(1).strip()
+    except OSError:
+        pass
+    return {"host": platform.node(), "os": f"{platform.system()} {platform.release()}", "cpu": cpu,
+            "cores": os.cpu_count(), "python": platform.python_version()}
+
+
+def commit():
+    r = sh(["git", "-C", ROOT, "rev-parse", "--short=12", "HEAD"])
+    if r.returncode != 0:
+        return "none (no commit yet)"
+    dirty = sh(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"]).stdout.strip()
+    return r.stdout.strip() + ("-dirty" if dirty else "")
+
+
+def fmt_med(x):
+    return str(int(x)) if float(x).is_integer() else f"{x:.1f}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("builds", nargs="*", default=[os.path.join(ROOT, "build", "cortex-m3")])
+    ap.add_argument("--machine", help="QEMU machine (default: from the build's toolchain file)")
+    ap.add_argument("--out-dir", default=os.path.join(ROOT, "bench"))
+    ap.add_argument("--reps", type=int, default=5, help="runs that must agree (default 5)")
+    ap.add_argument("--no-trace-check", action="store_true", help="skip the QEMU exec-trace cross-check")
+    a = ap.parse_args()
+
+    report = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+              "commit": commit(), "machine": machine_description(),
+              "qemu": tool_version([os.environ.get("QEMU", "qemu-system-arm"), "--version"]),
+              "method": "qemu -icount shift=3; SysTick 25 MHz (1 tick = 5 insns); bracket of 5 identical "
+                        "calls + 4 NOPs makes counts exact; kernel = entry..return inclusive; "
+                        "call = kernel + argument setup and result stores",
+              "boards": {}}
+    failed = []
+    order = []
+    for build in a.builds:
+        build = os.path.abspath(build)
+        elf = os.path.join(build, ELF_REL)
+        if not os.path.isfile(elf):
+            sys.exit(f"fx_insn: {elf} not found: build the cortex-m preset first "
+                     f"(cmake --workflow --preset cortex-m3, or cmake --build {build})")
+        board, machine = board_of(build, a.machine)
+        outs = [run_bench(elf, machine) for _ in range(max(1, a.reps))]
+        d = parse(outs[0])
+        errs = check(d)
+        nulls = null_twin_sizes(build)
+        if not nulls or any(v != 2 for v in nulls.values()):
+            errs.append(f"null twins must be one 16-bit instruction each: {nulls}")
+        same = all(parse(o)["k"] == d["k"] for o in outs[1:])
+        if not same:
+            errs.append("runs disagree: counts are not deterministic")
+        xcheck = {"skipped": True}
+        if not a.no_trace_check and "fx_crc32_64B" in d["k"]:
+            n, why = trace_count(build, machine, "fx_crc32")
+            expect = CALLS_PER_BRACKET * sum(d["k"]["fx_crc32_64B"])
+            xcheck = {"symbol": "fx_crc32", "trace_insns": n, "systick_insns": expect,
+                      "calls": CALLS_PER_BRACKET * len(d["k"]["fx_crc32_64B"]), "note": why}
+            if n is not None and n != expect:
+                errs.append(f"trace cross-check: QEMU trace {n} insns in fx_crc32, SysTick method {expect}")
+        kernels = {k: {"kernel": stats(v), "call": stats(d["call"][k]), "samples": v}
+                   for k, v in d["k"].items()}
+        for k in d["k"]:
+            if k not in order:
+                order.append(k)
+        report["boards"][board] = {
+            "build": os.path.relpath(build, ROOT), "machine": machine, "cpuid": d["cpuid"],
+            "compiler": tool_version([cache_value(build, "CMAKE_C_COMPILER") or "arm-none-eabi-gcc", "--version"]),
+            "build_type": cache_value(build, "CMAKE_BUILD_TYPE"),
+            "calibration": {"phase_invariant": not any(c[2] != c[0] + 4 for c in d["cal"]),
+                            "sleds": sorted({c[0] for c in d["cal"]}),
+                            "ticks": {str(k): v for k, v in ticks_per_insn(d).items()},
+                            "null_twins_single_insn": bool(nulls) and all(v == 2 for v in nulls.values())},
+            "cross_check": xcheck, "repetitions": len(outs), "repeatable": same,
+            "kernels": kernels, "errors": errs}
+        failed += [f"{board}: {e}" for e in errs]
+
+    os.makedirs(a.out_dir, exist_ok=True)
+    with open(os.path.join(a.out_dir, "fx_insn.json"), "w", encoding="utf-8") as f:
+        json.dump(report, f, indent=1)
+        f.write("\n")
+    boards = list(report["boards"])
+    md = ["# fx kernel instruction counts (QEMU, -icount shift=3)", "",
+          f"- generated {report['generated']}, commit `{report['commit']}`",
+          f"- host: {report['machine']['cpu']}, {report['machine']['cores']} cores, {report['machine']['os']}",
+          f"- {report['qemu']}"]
+    for b in boards:
+        r = report["boards"][b]
+        md.append(f"- {b}: `{r['build']}` ({r['build_type']}), {r['machine']}, CPUID {r['cpuid']}, {r['compiler']}")
+    md += ["", "Instructions per call, over varied inputs (random of varied magnitude plus edge cases: "
+           "saturation, divide by zero, domain errors, a singular system). **kernel** counts from the "
+           "kernel's first instruction through its return; **call** adds the argument setup and "
+           "result stores of a typical caller. Instructions are not cycles (spec 00 §6.4).", ""]
+    head = "| kernel | n |" + "".join(f" {b} min | {b} median | {b} max | {b} call median |" for b in boards)
+    md += [head, "|---|---:|" + "---:|---:|---:|---:|" * len(boards)]
+    for k in order:
+        row = f"| `{k}` |"
+        n = next((report["boards"][b]["kernels"][k]["kernel"]["n"] for b in boards
+                  if k in report["boards"][b]["kernels"]), 0)
+        row += f" {n} |"
+        for b in boards:
+            kk = report["boards"][b]["kernels"].get(k)
+            if kk is None:
+                row += " – | – | – | – |"
+            else:
+                s = kk["kernel"]
+                row += f" {s['min']} | {fmt_med(s['median'])} | {s['max']} | {fmt_med(kk['call']['median'])} |"
+        md.append(row)
+    md += ["", "## Calibration", ""]
+    for b in boards:
+        r = report["boards"][b]
+        c = r["calibration"]
+        tk = "; ".join(f"{n} NOPs -> ticks {v['ticks']} ({v['insn_per_tick']:.4f} insn/tick)"
+                       for n, v in c["ticks"].items())
+        x = r["cross_check"]
+        xs = ("skipped" if x.get("skipped") else
+              f"QEMU exec trace counted {x['trace_insns']} instructions in `fx_crc32` over {x['calls']} calls; "
+              f"SysTick method {x['systick_insns']}" + (" (equal)" if x["trace_insns"] == x["systick_insns"] else " (DIFFERENT)"))
+        md += [f"- **{b}**: NOP sleds {c['sleds']} measure exactly N + 4 at all 5 tick phases: "
+               f"{'yes' if c['phase_invariant'] else 'NO'}; null twins single-instruction: "
+               f"{'yes' if c['null_twins_single_insn'] else 'NO'}; {r['repetitions']} runs identical: "
+               f"{'yes' if r['repeatable'] else 'NO'}.",
+               f"  - plain bracket: {tk}.",
+               f"  - cross-check: {xs}."]
+        for e in r["errors"]:
+            md.append(f"  - **error**: {e}")
+    with open(os.path.join(a.out_dir, "fx_insn.md"), "w", encoding="utf-8") as f:
+        f.write("\n".join(md) + "\n")
+    print("\n".join(md))
+    if failed:
+        print("fx_insn: checks failed:\n  " + "\n  ".join(failed), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
