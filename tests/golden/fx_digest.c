@@ -33,6 +33,8 @@ static void dg_u32(dg_t *d, uint32_t v)
 
 static void dg_i32(dg_t *d, int32_t v) { dg_u32(d, (uint32_t)v); }
 
+/* Callers store the result in a local first: C leaves the order of argument evaluation
+   unspecified, so passing `f(&st), st` could record the status from before the call. */
 static void dg_rec(dg_t *d, int32_t v, fx_status_t st)
 {
     dg_i32(d, v);
@@ -95,8 +97,8 @@ UT_TEST(digest_mul_div)
                 int32_t b = (i < NEDGE) ? edges[j] : rnd(&seed);
                 fx_status_t s1 = 0u;
                 fx_status_t s2 = 0u;
-                dg_rec(&dm, fx_mul(a, fm[f][0], b, fm[f][1], fm[f][2], &s1), s1);
-                dg_rec(&dd, fx_div(a, fm[f][0], b, fm[f][1], fm[f][2], &s2), s2);
+                { int32_t r_ = fx_mul(a, fm[f][0], b, fm[f][1], fm[f][2], &s1); dg_rec(&dm, r_, s1); }
+                { int32_t r_ = fx_div(a, fm[f][0], b, fm[f][1], fm[f][2], &s2); dg_rec(&dd, r_, s2); }
             }
         }
     }
@@ -119,15 +121,32 @@ UT_TEST(digest_shift_convert_counts)
             dg_u32(&d, (uint32_t)(uint64_t)r);
             dg_rec(&d, (int32_t)(uint32_t)((uint64_t)r >> 32), st);
             st = 0u;
-            dg_rec(&d, fx_convert(rnd(&seed), n % 41u, (n * 7u) % 41u, &st), st);
+            { int32_t x1 = rnd(&seed); int32_t r_ = fx_convert(x1, n % 41u, (n * 7u) % 41u, &st); dg_rec(&d, r_, st); }
             st = 0u;
-            dg_rec(&d, fx_shl_sat(rndb(&seed, 24u), n % 32u, &st), st);
+            { int32_t r_ = fx_shl_sat(rndb(&seed, 24u), n % 32u, &st); dg_rec(&d, r_, st); }
             st = 0u;
-            dg_rec(&d, fx_from_count(rnd(&seed), rndb(&seed, 16u), n % 40u, rndb(&seed, 28u), &st), st);
+            {
+                /* Operands drawn in separate statements: argument evaluation order is unspecified. */
+                int32_t c = rnd(&seed);
+                int32_t m = rndb(&seed, 16u);
+                int32_t bias = rndb(&seed, 28u);
+                int32_t r_ = fx_from_count(c, m, n % 40u, bias, &st);
+                dg_rec(&d, r_, st);
+            }
             st = 0u;
-            dg_rec(&d, fx_to_count(rnd(&seed), rndb(&seed, 16u), n % 40u, -1048575, 1048575, &st), st);
+            {
+                int32_t v = rnd(&seed);
+                int32_t m = rndb(&seed, 16u);
+                int32_t r_ = fx_to_count(v, m, n % 40u, -1048575, 1048575, &st);
+                dg_rec(&d, r_, st);
+            }
             st = 0u;
-            dg_rec(&d, fx_add_sat(rnd(&seed), rnd(&seed), &st), st);
+            {
+                int32_t x1 = rnd(&seed);
+                int32_t x2 = rnd(&seed);
+                int32_t r_ = fx_add_sat(x1, x2, &st);
+                dg_rec(&d, r_, st);
+            }
         }
     }
     dg_end(&d, "fx_shift_convert");
@@ -144,12 +163,12 @@ UT_TEST(digest_roots)
         uint64_t x = ut_rng_next(&seed) >> (i % 64u);
         int32_t v[3];
         dg_rec(&d, (int32_t)fx_isqrt64(x), 0u);
-        dg_rec(&d, fx_sqrt(rnd(&seed), 30u - (i % 3u), 30u - (i % 5u), &st), st);
+        { int32_t r_ = fx_sqrt(rnd(&seed), 30u - (i % 3u), 30u - (i % 5u), &st); dg_rec(&d, r_, st); }
         v[0] = rnd(&seed);
         v[1] = rnd(&seed);
         v[2] = rnd(&seed);
         st = 0u;
-        dg_rec(&d, fx_norm3(v, &st), st);
+        { int32_t r_ = fx_norm3(v, &st); dg_rec(&d, r_, st); }
     }
     dg_end(&d, "fx_roots");
 }
@@ -168,8 +187,12 @@ UT_TEST(digest_trig)
         fx_sincos(a, &s, &c);
         dg_rec(&d, s, 0u);
         dg_rec(&d, c, 0u);
-        dg_u32(&d, fx_atan2_bam(rnd(&seed), rnd(&seed), &st));
-        dg_rec(&d, fx_bam_to_rad_q29(a), st);
+        {
+            int32_t y = rnd(&seed);
+            int32_t x = rnd(&seed);
+            dg_u32(&d, fx_atan2_bam(y, x, &st));
+        }
+        { int32_t r_ = fx_bam_to_rad_q29(a); dg_rec(&d, r_, st); }
         dg_u32(&d, fx_rad_q29_to_bam(rnd(&seed)));
     }
     dg_end(&d, "fx_trig");
@@ -196,7 +219,7 @@ UT_TEST(digest_kernels_solve)
             a[i] = rndb(&seed, 32u - (it % 5u));
             b[i] = rndb(&seed, 32u - (it % 3u));
         }
-        dg_rec(&dk, fx_dot(a, 30u, b, 29u, n, 28u, &st), st);
+        { int32_t r_ = fx_dot(a, 30u, b, 29u, n, 28u, &st); dg_rec(&dk, r_, st); }
         st = 0u;
         fx_matvec(a, 28u, b, 28u, n, m, y, 28u, &st);
         for (i = 0u; i < n; i++) {
