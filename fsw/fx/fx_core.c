@@ -99,7 +99,15 @@ uint32_t fx_uabs(int32_t a)
 int64_t fx_add64_sat(int64_t a, int64_t b, fx_status_t *st)
 {
     int64_t r;
-    /* Test before adding: the overflowing sum itself would be UB. */
+#if defined(__GNUC__) && !defined(FX_PORTABLE_C)
+    /* ADDS/ADCS + a V-flag test on Cortex-M; the wrapped sum is never used on overflow. */
+    if (__builtin_add_overflow(a, b, &r)) {
+        *st |= FX_ST_ACC_OVF;
+        r = (b > 0) ? INT64_MAX : INT64_MIN;
+    }
+#else
+    /* Portable path (other compilers; the asan-ubsan preset builds it so it stays tested).
+       Test before adding: the overflowing sum itself would be UB. */
     if ((b > 0) && (a > (INT64_MAX - b))) {
         *st |= FX_ST_ACC_OVF;
         r = INT64_MAX;
@@ -109,6 +117,7 @@ int64_t fx_add64_sat(int64_t a, int64_t b, fx_status_t *st)
     } else {
         r = a + b;
     }
+#endif
     return r;
 }
 
