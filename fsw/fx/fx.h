@@ -95,6 +95,9 @@ int32_t  fx_from_count(int32_t count, int32_t scale_m, uint32_t scale_sh, int32_
 int32_t  fx_to_count(int32_t v, int32_t inv_m, uint32_t inv_sh, int32_t cmin, int32_t cmax,
                      fx_status_t *st);
 
+/* 2^n as int64 for n in [0, 62] (built by an unsigned shift); ARG and 0 otherwise. */
+int64_t  fx_pow2_64(uint32_t n, fx_status_t *st);
+
 /* Saturating counter increment: counters never wrap. */
 void     fx_cnt_inc(uint32_t *c);
 

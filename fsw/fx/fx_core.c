@@ -127,15 +127,9 @@ int32_t fx_shl_sat(int32_t a, uint32_t n, fx_status_t *st)
     if (n > 31u) {
         *st |= FX_ST_ARG;
         r = 0;
-    } else if (a > (INT32_MAX >> n)) {
-        *st |= FX_ST_SAT_HI;
-        r = INT32_MAX;
-    } else if ((int64_t)a < -((int64_t)1 << (31u - n))) {
-        *st |= FX_ST_SAT_LO;
-        r = INT32_MIN;
     } else {
-        /* In range: the unsigned shift gives the two's-complement pattern of a * 2^n. */
-        r = (int32_t)((uint32_t)a << n);
+        /* |a| <= 2^31 and n <= 31: the exact product fits int64, then one saturation. */
+        r = fx_sat32((int64_t)a * fx_pow2_64(n, st), st);
     }
     return r;
 }
@@ -183,14 +177,19 @@ static int32_t shl64_sat32(int64_t v, uint32_t n, fx_status_t *st)
         /* Any non-zero value times 2^32 or more is out of int32 range. */
         *st |= (v > 0) ? FX_ST_SAT_HI : FX_ST_SAT_LO;
         r = (v > 0) ? INT32_MAX : INT32_MIN;
-    } else if (v > ((int64_t)INT32_MAX >> n)) {
-        *st |= FX_ST_SAT_HI;
-        r = INT32_MAX;
-    } else if (v < -((int64_t)1 << (31u - n))) {
-        *st |= FX_ST_SAT_LO;
-        r = INT32_MIN;
     } else {
-        r = (int32_t)(uint32_t)((uint64_t)v << n);
+        /* In range iff -2^(31-n) <= v <= (2^31 - 1) >> n; then v * 2^n is exact. */
+        uint32_t hi_u = (uint32_t)INT32_MAX >> n;
+        int64_t lo = -fx_pow2_64(31u - n, st);
+        if (v > (int64_t)hi_u) {
+            *st |= FX_ST_SAT_HI;
+            r = INT32_MAX;
+        } else if (v < lo) {
+            *st |= FX_ST_SAT_LO;
+            r = INT32_MIN;
+        } else {
+            r = (int32_t)(v * fx_pow2_64(n, st));
+        }
     }
     return r;
 }
@@ -264,6 +263,19 @@ int32_t fx_to_count(int32_t v, int32_t inv_m, uint32_t inv_sh, int32_t cmin, int
     return r;
 }
 
+int64_t fx_pow2_64(uint32_t n, fx_status_t *st)
+{
+    int64_t r = 0;
+    if (n > 62u) {
+        *st |= FX_ST_ARG;
+    } else {
+        /* Shifted as unsigned: no signed value is ever shifted. */
+        uint64_t p = (uint64_t)1 << n;
+        r = (int64_t)p;
+    }
+    return r;
+}
+
 void fx_cnt_inc(uint32_t *c)
 {
     if (*c < UINT32_MAX) {
@@ -312,6 +324,32 @@ uint64_t fx_udiv_rnd64(uint64_t num, uint64_t den)
     return q;
 }
 
+/*
+ * |a| / |b| * 2^k rounded, for magnitudes ua <= 2^31, 1 <= ub <= 2^31 and k in [-40, 80].
+ * *big is set when the quotient is certainly >= 2^33 (it then saturates in the caller).
+ */
+static uint64_t div_mag(uint64_t ua, uint64_t ub, int32_t k, bool *big)
+{
+    uint64_t q = 0u;
+    *big = false;
+    if (k >= 0) {
+        uint32_t uk = (uint32_t)k;
+        /* ua * 2^k >= 2^64 with ub <= 2^31 means a quotient >= 2^33. */
+        if ((uk > 63u) || (ua > (UINT64_MAX >> uk))) {
+            *big = true;
+        } else {
+            q = fx_udiv_rnd64(ua << uk, ub);
+        }
+    } else {
+        uint32_t uk = (uint32_t)(-k);
+        /* ub * 2^-k >= 2^64 > 2 * ua means the quotient rounds to 0. */
+        if ((uk <= 63u) && (ub <= (UINT64_MAX >> uk))) {
+            q = fx_udiv_rnd64(ua, ub << uk);
+        }
+    }
+    return q;
+}
+
 int32_t fx_div(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_status_t *st)
 {
     int32_t r = 0;
@@ -319,35 +357,17 @@ int32_t fx_div(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_s
         *st |= FX_ST_ARG;
     } else if (b == 0) {
         *st |= FX_ST_DIV0;
-        r = (a > 0) ? INT32_MAX : ((a < 0) ? -INT32_MAX : 0);
+        if (a != 0) {
+            r = (a > 0) ? INT32_MAX : -INT32_MAX;
+        }
     } else if (a != 0) {
         bool neg = (a < 0) != (b < 0);
-        uint64_t ua = (uint64_t)fx_uabs(a);
-        uint64_t ub = (uint64_t)fx_uabs(b);
+        bool big = false;
         /* result = a/b * 2^k with k = qr - qa + qb in [-40, 80]. */
-        int32_t k = (int32_t)qr - (int32_t)qa + (int32_t)qb;
+        int32_t k = ((int32_t)qr - (int32_t)qa) + (int32_t)qb;
+        uint64_t q = div_mag((uint64_t)fx_uabs(a), (uint64_t)fx_uabs(b), k, &big);
         uint64_t lim = neg ? ((uint64_t)1 << 31) : (uint64_t)INT32_MAX;
-        uint64_t q;
-        bool sat = false;
-        if (k >= 0) {
-            uint32_t uk = (uint32_t)k;
-            /* ua * 2^k >= 2^64 with ub <= 2^31 means a quotient >= 2^33: saturated. */
-            if ((uk > 63u) || (ua > (UINT64_MAX >> uk))) {
-                sat = true;
-                q = 0u;
-            } else {
-                q = fx_udiv_rnd64(ua << uk, ub);
-            }
-        } else {
-            uint32_t uk = (uint32_t)(-k);
-            /* ub * 2^-k >= 2^64 > 2 * ua means the quotient rounds to 0. */
-            if ((uk > 63u) || (ub > (UINT64_MAX >> uk))) {
-                q = 0u;
-            } else {
-                q = fx_udiv_rnd64(ua, ub << uk);
-            }
-        }
-        if (sat || (q > lim)) {
+        if (big || (q > lim)) {
             *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
             r = neg ? INT32_MIN : INT32_MAX;
         } else {

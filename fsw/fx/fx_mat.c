@@ -6,6 +6,11 @@
  */
 #include "fx.h"
 
+/* Powers of two used as int64 scale factors (written out: no signed value is ever shifted). */
+#define P2_30_I64 INT64_C(1073741824)       /* 2^30 */
+#define P2_32_I64 INT64_C(4294967296)       /* 2^32 */
+#define P2_40_I64 INT64_C(1099511627776)    /* 2^40 */
+
 /*
  * Exact sum of n products a[i*sa] * b[i*sb], rounded by `shift` to a saturated int32. On the
  * first int64 overflow the sum stops (it no longer means anything), ACC_OVF is raised and the
@@ -19,7 +24,7 @@ static int32_t dot_rounded(const int32_t *a, uint32_t sa, const int32_t *b, uint
     uint32_t i;
     int32_t r;
     for (i = 0u; (i < n) && (i < FX_NMAX) && (s == 0u); i++) {
-        acc = fx_add64_sat(acc, (int64_t)a[i * sa] * (int64_t)b[i * sb], &s);
+        acc = fx_add64_sat(acc, (int64_t)a[(size_t)i * sa] * (int64_t)b[(size_t)i * sb], &s);
     }
     if (s != 0u) {
         *st |= FX_ST_ACC_OVF | ((acc > 0) ? FX_ST_SAT_HI : FX_ST_SAT_LO);
@@ -65,7 +70,7 @@ void fx_matvec(const int32_t *m, uint32_t qm, const int32_t *x, uint32_t qx,
     uint32_t i;
     bool ok = args_ok(qm, qx, qy, rows, cols, 1u, &sh, st);
     for (i = 0u; (i < rows) && (i < FX_NMAX); i++) {
-        y[i] = ok ? dot_rounded(&m[i * cols], 1u, x, 1u, cols, sh, st) : 0;
+        y[i] = ok ? dot_rounded(&m[(size_t)i * cols], 1u, x, 1u, cols, sh, st) : 0;
     }
 }
 
@@ -78,7 +83,7 @@ void fx_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
     bool ok = args_ok(qa, qb, qc, n, k, m, &sh, st);
     for (i = 0u; (i < n) && (i < FX_NMAX); i++) {
         for (j = 0u; (j < m) && (j < FX_NMAX); j++) {
-            c[(i * m) + j] = ok ? dot_rounded(&a[i * k], 1u, &b[j], m, k, sh, st) : 0;
+            c[((size_t)i * m) + j] = ok ? dot_rounded(&a[(size_t)i * k], 1u, &b[j], m, k, sh, st) : 0;
         }
     }
 }
@@ -170,7 +175,7 @@ static int32_t div_by_pivot(int64_t s, int32_t p, int32_t rec, uint32_t sh, fx_s
     int64_t x0;
     int32_t r;
     bool neg = (s < 0) != (p < 0);
-    if ((!recip_mul(s, rec, sh, 0u, &x0)) || (x0 >= ((int64_t)1 << 32)) || (x0 <= -((int64_t)1 << 32))) {
+    if ((!recip_mul(s, rec, sh, 0u, &x0)) || (x0 >= P2_32_I64) || (x0 <= -P2_32_I64)) {
         *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
         r = neg ? INT32_MIN : INT32_MAX;
     } else {
@@ -179,20 +184,90 @@ static int32_t div_by_pivot(int64_t s, int32_t p, int32_t rec, uint32_t sh, fx_s
         /* |p * x0| < 2^63 and s ~= p * x0, so the residual is small and exact. */
         int64_t resid = fx_add64_sat(s, -((int64_t)p * x0), &acc);
         if ((acc != 0u) || (!recip_mul(resid, rec, sh, SOLVE_REFINE_FRAC, &cf)) ||
-            (cf > ((int64_t)1 << 40)) || (cf < -((int64_t)1 << 40))) {
+            (cf > P2_40_I64) || (cf < -P2_40_I64)) {
             *st |= FX_ST_ACC_OVF;
             cf = 0;
         }
-        r = fx_rshift_sat((x0 * ((int64_t)1 << SOLVE_REFINE_FRAC)) + cf, SOLVE_REFINE_FRAC, st);
+        r = fx_rshift_sat((x0 * fx_pow2_64(SOLVE_REFINE_FRAC, st)) + cf, SOLVE_REFINE_FRAC, st);
     }
     return r;
+}
+
+/* Partial pivoting for column k: swap the row with the largest |a_ik| (lowest index on ties)
+   into row k. Returns that magnitude. */
+static uint32_t pivot_rows(fx_solve_ws_t *ws, uint32_t n, uint32_t k)
+{
+    uint32_t p = k;
+    uint32_t best = fx_uabs(ws->a[(k * n) + k]);
+    uint32_t i;
+    for (i = k + 1u; i < n; i++) {
+        uint32_t v = fx_uabs(ws->a[(i * n) + k]);
+        if (v > best) {
+            best = v;
+            p = i;
+        }
+    }
+    if (p != k) {
+        uint32_t j;
+        for (j = 0u; j < n; j++) {
+            int32_t t = ws->a[(k * n) + j];
+            ws->a[(k * n) + j] = ws->a[(p * n) + j];
+            ws->a[(p * n) + j] = t;
+        }
+        {
+            int32_t t = ws->b[k];
+            ws->b[k] = ws->b[p];
+            ws->b[p] = t;
+        }
+    }
+    ws->perm[k] = (uint8_t)p;
+    return best;
+}
+
+/* Eliminate column k below the pivot using its reciprocal (ws->rec[k], ws->rec_sh[k]). */
+static void eliminate(fx_solve_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st)
+{
+    uint32_t i;
+    uint32_t j;
+    uint32_t sh = ws->rec_sh[k];
+    for (i = k + 1u; i < n; i++) {
+        /* Multiplier l = a_ik / a_kk in q30; |l| <= 1 (+1 LSB) by pivoting. */
+        int64_t l = fx_shr_rnd64((int64_t)ws->a[(i * n) + k] * (int64_t)ws->rec[k], 30u - sh, st);
+        ws->a[(i * n) + k] = 0;
+        for (j = k + 1u; j < n; j++) {
+            /* a_ij - l a_kj formed exactly at 30 extra bits, rounded once. */
+            int64_t v = ((int64_t)ws->a[(i * n) + j] * P2_30_I64) - (l * (int64_t)ws->a[(k * n) + j]);
+            ws->a[(i * n) + j] = fx_rshift_sat(v, 30u, st);
+        }
+        {
+            int64_t v = ((int64_t)ws->b[i] * P2_30_I64) - (l * (int64_t)ws->b[k]);
+            ws->b[i] = fx_rshift_sat(v, 30u, st);
+        }
+    }
+}
+
+/* x_i = (b_i - sum_{j>i} a_ij x_j) / a_ii, accumulated exactly in q(qa + qx), bottom up. */
+static void back_substitute(const fx_solve_ws_t *ws, uint32_t n, uint32_t b_shift, int32_t *x,
+                            fx_status_t *st)
+{
+    uint32_t k;
+    for (k = 0u; k < n; k++) {
+        uint32_t ii = n - 1u - k;
+        uint32_t j;
+        fx_status_t acc = 0u;
+        int64_t s = (int64_t)ws->b[ii] * fx_pow2_64(b_shift, st);
+        for (j = ii + 1u; j < n; j++) {
+            s = fx_add64_sat(s, -((int64_t)ws->a[(ii * n) + j] * (int64_t)x[j]), &acc);
+        }
+        *st |= acc;
+        x[ii] = div_by_pivot(s, ws->pivot[ii], ws->rec[ii], ws->rec_sh[ii], st);
+    }
 }
 
 void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
               uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
     uint32_t i;
-    uint32_t j;
     uint32_t k;
     bool fail = false;
     /* Back substitution scales b from qb to qa + qx; keep b * 2^e inside int64 (e <= 31). */
@@ -200,76 +275,32 @@ void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b
         (qb > (qa + qx)) || ((qa + qx - qb) > 31u)) {
         *st |= FX_ST_ARG;
         fail = true;
+    } else {
+        for (i = 0u; i < (n * n); i++) {
+            ws->a[i] = a[i];
+        }
+        for (i = 0u; i < n; i++) {
+            ws->b[i] = b[i];
+        }
     }
-    for (i = 0u; (!fail) && (i < (n * n)); i++) {
-        ws->a[i] = a[i];
-    }
-    for (i = 0u; (!fail) && (i < n); i++) {
-        ws->b[i] = b[i];
-    }
-    /* Elimination with partial pivoting; ties go to the lowest row index (deterministic). */
     for (k = 0u; (!fail) && (k < n); k++) {
-        uint32_t p = k;
-        uint32_t best = fx_uabs(ws->a[(k * n) + k]);
-        uint32_t sh = 0u;
-        for (i = k + 1u; i < n; i++) {
-            uint32_t v = fx_uabs(ws->a[(i * n) + k]);
-            if (v > best) {
-                best = v;
-                p = i;
-            }
-        }
-        if (p != k) {
-            for (j = 0u; j < n; j++) {
-                int32_t t = ws->a[(k * n) + j];
-                ws->a[(k * n) + j] = ws->a[(p * n) + j];
-                ws->a[(p * n) + j] = t;
-            }
-            {
-                int32_t t = ws->b[k];
-                ws->b[k] = ws->b[p];
-                ws->b[p] = t;
-            }
-        }
-        ws->perm[k] = (uint8_t)p;
+        uint32_t best = pivot_rows(ws, n, k);
         ws->pivot[k] = ws->a[(k * n) + k];
         if ((best == 0u) || ((int64_t)best < (int64_t)pivot_min)) {
             *st |= FX_ST_SINGULAR;
             fail = true;
         } else {
+            uint32_t sh = 0u;
             ws->rec[k] = pivot_recip(ws->pivot[k], &sh);
             ws->rec_sh[k] = (uint8_t)sh;
-            for (i = k + 1u; i < n; i++) {
-                /* Multiplier l = a_ik / a_kk in q30; |l| <= 1 (+1 LSB) by pivoting. */
-                int64_t l = fx_shr_rnd64((int64_t)ws->a[(i * n) + k] * (int64_t)ws->rec[k], 30u - sh, st);
-                ws->a[(i * n) + k] = 0;
-                for (j = k + 1u; j < n; j++) {
-                    /* a_ij - l a_kj formed exactly at 30 extra bits, rounded once. */
-                    int64_t v = ((int64_t)ws->a[(i * n) + j] * ((int64_t)1 << 30)) - (l * (int64_t)ws->a[(k * n) + j]);
-                    ws->a[(i * n) + j] = fx_rshift_sat(v, 30u, st);
-                }
-                {
-                    int64_t v = ((int64_t)ws->b[i] * ((int64_t)1 << 30)) - (l * (int64_t)ws->b[k]);
-                    ws->b[i] = fx_rshift_sat(v, 30u, st);
-                }
-            }
+            eliminate(ws, n, k, st);
         }
-    }
-    /* Back substitution: x_i = (b_i - sum_{j>i} a_ij x_j) / a_ii, accumulated exactly in
-       q(qa + qx), then divided through the pivot's reciprocal. */
-    for (k = 0u; (!fail) && (k < n); k++) {
-        uint32_t ii = n - 1u - k;
-        fx_status_t acc = 0u;
-        int64_t s = (int64_t)ws->b[ii] * ((int64_t)1 << (qa + qx - qb));
-        for (j = ii + 1u; j < n; j++) {
-            s = fx_add64_sat(s, -((int64_t)ws->a[(ii * n) + j] * (int64_t)x[j]), &acc);
-        }
-        *st |= acc;
-        x[ii] = div_by_pivot(s, ws->pivot[ii], ws->rec[ii], ws->rec_sh[ii], st);
     }
     if (fail) {
         for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
             x[i] = 0;
         }
+    } else {
+        back_substitute(ws, n, (qa + qx) - qb, x, st);
     }
 }
