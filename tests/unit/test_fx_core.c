@@ -6,41 +6,9 @@
  */
 #include "fx.h"
 #include "ut.h"
+#include "ut_ref.h"
 
 #define NELEM(a) (sizeof(a) / sizeof((a)[0]))
-
-/* Reference rounding shift built on C99 truncating division: q = trunc(p / 2^n), then away
-   from zero when the discarded part is at least one half. Independent of fx_core. */
-static int64_t ref_shr(int64_t p, uint32_t n)
-{
-    int64_t d;
-    int64_t q;
-    int64_t rem;
-    if (n == 0u) {
-        return p;
-    }
-    if (n == 63u) {
-        /* |p| <= 2^63: |p|/2^63 <= 1; the result is +-1 iff |p| >= 2^62. */
-        return (p >= ((int64_t)1 << 62)) ? 1 : ((p <= -((int64_t)1 << 62)) ? -1 : 0);
-    }
-    d = (int64_t)1 << n;
-    q = p / d;
-    rem = p % d;
-    if (rem < 0) {
-        rem = -rem;
-        if (rem >= (d - rem)) {
-            q -= 1;
-        }
-    } else if (rem >= (d - rem)) {
-        q += 1;
-    }
-    return q;
-}
-
-static int64_t ref_clamp32(int64_t v)
-{
-    return (v > INT32_MAX) ? INT32_MAX : ((v < INT32_MIN) ? INT32_MIN : v);
-}
 
 static const int32_t edge32[] = {
     INT32_MIN, INT32_MIN + 1, -1073741825, -1073741824, -65537, -65536, -65535, -3, -2, -1, 0,
@@ -94,12 +62,12 @@ UT_TEST(add_sub_neg_abs_edges)
             fx_status_t st = 0u;
             int64_t s = a + b;
             fx_status_t want = (s > INT32_MAX) ? FX_ST_SAT_HI : ((s < INT32_MIN) ? FX_ST_SAT_LO : 0u);
-            UT_CHECK_EQ(fx_add_sat(edge32[i], edge32[j], &st), ref_clamp32(s));
+            UT_CHECK_EQ(fx_add_sat(edge32[i], edge32[j], &st), ut_ref_clamp32(s));
             UT_CHECK_UEQ(st, want);
             st = 0u;
             s = a - b;
             want = (s > INT32_MAX) ? FX_ST_SAT_HI : ((s < INT32_MIN) ? FX_ST_SAT_LO : 0u);
-            UT_CHECK_EQ(fx_sub_sat(edge32[i], edge32[j], &st), ref_clamp32(s));
+            UT_CHECK_EQ(fx_sub_sat(edge32[i], edge32[j], &st), ut_ref_clamp32(s));
             UT_CHECK_UEQ(st, want);
         }
     }
@@ -143,7 +111,7 @@ UT_TEST(shl_sat_all_shifts)
             fx_status_t st = 0u;
             int64_t exact = (int64_t)edge32[i] * ((int64_t)1 << n);
             fx_status_t want = (exact > INT32_MAX) ? FX_ST_SAT_HI : ((exact < INT32_MIN) ? FX_ST_SAT_LO : 0u);
-            UT_CHECK_EQ(fx_shl_sat(edge32[i], n, &st), ref_clamp32(exact));
+            UT_CHECK_EQ(fx_shl_sat(edge32[i], n, &st), ut_ref_clamp32(exact));
             UT_CHECK_UEQ(st, want);
         }
     }
@@ -194,8 +162,8 @@ UT_TEST(shr_rnd_ties_and_sweep)
                 /* exact tie: odd multiple of 2^(n-1) */
                 p = (((int64_t)(i | 1u)) * ((int64_t)1 << (n - 1u))) * (((i & 8u) != 0u) ? -1 : 1);
             }
-            UT_CHECK_EQ(fx_shr_rnd64(p, n, &s2), ref_shr(p, n));
-            UT_CHECK_EQ(fx_shr_rnd64(-p, n, &s2), -ref_shr(p, n));
+            UT_CHECK_EQ(fx_shr_rnd64(p, n, &s2), ut_ref_shr(p, n));
+            UT_CHECK_EQ(fx_shr_rnd64(-p, n, &s2), -ut_ref_shr(p, n));
             UT_CHECK_UEQ(s2, 0u);
         }
     }
@@ -213,13 +181,13 @@ UT_TEST(convert_edges)
                 int64_t want;
                 int32_t got = fx_convert(edge32[i], qf, qt, &st);
                 if (qf >= qt) {
-                    want = ref_shr(edge32[i], qf - qt);
+                    want = ut_ref_shr(edge32[i], qf - qt);
                     UT_CHECK_UEQ(st, 0u);
                 } else {
                     uint32_t sh = qt - qf;
                     int64_t e = (sh > 32u) ? ((edge32[i] > 0) ? INT64_MAX : ((edge32[i] < 0) ? INT64_MIN : 0))
                                            : (int64_t)edge32[i] * ((int64_t)1 << sh);
-                    want = ref_clamp32(e);
+                    want = ut_ref_clamp32(e);
                     UT_CHECK_UEQ(st, (want != e) ? (((e > 0) ? FX_ST_SAT_HI : FX_ST_SAT_LO) | FX_ST_CONV) : 0u);
                 }
                 UT_CHECK_EQ(got, want);
@@ -299,13 +267,13 @@ UT_TEST(mul_edges_and_random)
                 int64_t want;
                 int32_t got = fx_mul(a, qa, b, qb, qr, &st);
                 if (qa + qb >= qr) {
-                    want = ref_shr(p, qa + qb - qr);
+                    want = ut_ref_shr(p, qa + qb - qr);
                 } else {
                     uint32_t sh = qr - qa - qb;
                     int64_t lim = (int64_t)1 << (62u - sh);
                     want = (p >= lim) ? INT64_MAX : ((p <= -lim) ? INT64_MIN : p * ((int64_t)1 << sh));
                 }
-                UT_CHECK_EQ(got, ref_clamp32(want));
+                UT_CHECK_EQ(got, ut_ref_clamp32(want));
                 UT_CHECK_UEQ(st, (want > INT32_MAX) ? FX_ST_SAT_HI : ((want < INT32_MIN) ? FX_ST_SAT_LO : 0u));
             }
         }
@@ -359,7 +327,7 @@ UT_TEST(div_edges_and_random)
             if (rem >= (babs - rem)) {
                 q += ((num < 0) != (b < 0)) ? -1 : 1;
             }
-            UT_CHECK_EQ(fx_div(a, qa, b, qb, qr, &st), ref_clamp32(q));
+            UT_CHECK_EQ(fx_div(a, qa, b, qb, qr, &st), ut_ref_clamp32(q));
             UT_CHECK_UEQ(st, (q > INT32_MAX) ? FX_ST_SAT_HI : ((q < INT32_MIN) ? FX_ST_SAT_LO : 0u));
         }
     }

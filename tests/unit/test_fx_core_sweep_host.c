@@ -9,35 +9,13 @@
  */
 #include "fx.h"
 #include "ut.h"
+#include "ut_oracle_host.h"
 
 #include <stdio.h>
 
-__extension__ typedef __int128 i128;
 
 #define NELEM(a) (sizeof(a) / sizeof((a)[0]))
 #define PAIRS_PER_TRIPLE (1u << 22)   /* spec 00 §1.6: 2^22 seeded random pairs per triple */
-
-/* round(v / 2^n) half away from zero, exact. */
-static i128 o_shr(i128 v, uint32_t n)
-{
-    i128 d;
-    i128 q;
-    i128 r;
-    if (n == 0u) {
-        return v;
-    }
-    d = (i128)1 << n;
-    q = v / d;
-    r = v % d;
-    if (r < 0) {
-        r = -r;
-    }
-    if (2 * r >= d) {
-        q += (v < 0) ? -1 : 1;
-    }
-    return q;
-}
-
 static int32_t o_clamp(i128 v, fx_status_t *st)
 {
     if (v > INT32_MAX) {

@@ -5,26 +5,9 @@
  */
 #include "fx.h"
 #include "ut.h"
+#include "ut_ref.h"
 
 #define NELEM(a) (sizeof(a) / sizeof((a)[0]))
-
-static int64_t ref_rnd(int64_t p, uint32_t n)
-{
-    int64_t d;
-    int64_t q;
-    int64_t r;
-    if (n == 0u) {
-        return p;
-    }
-    d = (int64_t)1 << n;
-    q = p / d;
-    r = p % d;
-    r = (r < 0) ? -r : r;
-    if (r >= d - r) {
-        q += (p < 0) ? -1 : 1;
-    }
-    return q;
-}
 
 static int32_t small(uint64_t *s)
 {
@@ -56,7 +39,7 @@ UT_TEST(dot_matvec_matmul_random)
             for (i = 0u; i < n; i++) {
                 s += (int64_t)a[i] * b[i];
             }
-            UT_CHECK_EQ(fx_dot(a, 28u, b, 29u, n, 30u, &st), ref_rnd(s, 27u));
+            UT_CHECK_EQ(fx_dot(a, 28u, b, 29u, n, 30u, &st), ut_ref_shr(s, 27u));
         }
         fx_matvec(a, 28u, b, 28u, n, k, y, 28u, &st);
         for (i = 0u; i < n; i++) {
@@ -64,7 +47,7 @@ UT_TEST(dot_matvec_matmul_random)
             for (j = 0u; j < k; j++) {
                 s += (int64_t)a[i * k + j] * b[j];
             }
-            UT_CHECK_EQ(y[i], ref_rnd(s, 28u));
+            UT_CHECK_EQ(y[i], ut_ref_shr(s, 28u));
         }
         fx_matmul(a, 30u, b, 30u, n, k, m, c, 31u, &st);
         for (i = 0u; i < n; i++) {
@@ -73,7 +56,7 @@ UT_TEST(dot_matvec_matmul_random)
                 for (l = 0u; l < k; l++) {
                     s += (int64_t)a[i * k + l] * b[l * m + j];
                 }
-                UT_CHECK_EQ(c[i * m + j], ref_rnd(s, 29u));
+                UT_CHECK_EQ(c[i * m + j], ut_ref_shr(s, 29u));
             }
         }
         UT_CHECK_UEQ(st, 0u);

@@ -17,35 +17,15 @@
  */
 #include "fx.h"
 #include "ut.h"
+#include "ut_oracle_host.h"
 
 #include <math.h>
 #include <stdio.h>
 
-__extension__ typedef __int128 i128;
 
 #define SYSTEMS 10000u
 #define QA 28u
 #define QX 28u
-
-static i128 o_shr(i128 v, uint32_t n)
-{
-    i128 d;
-    i128 q;
-    i128 r;
-    if (n == 0u) {
-        return v;
-    }
-    d = (i128)1 << n;
-    q = v / d;
-    r = v % d;
-    if (r < 0) {
-        r = -r;
-    }
-    if (2 * r >= d) {
-        q += (v < 0) ? -1 : 1;
-    }
-    return q;
-}
 
 static int32_t rnd32(uint64_t *s)
 {

@@ -6,10 +6,10 @@
  */
 #include "fx.h"
 #include "ut.h"
+#include "ut_oracle_host.h"
 
 #include <stdio.h>
 
-__extension__ typedef unsigned __int128 u128;
 
 static bool floor_ok(uint64_t x, uint32_t r)
 {
@@ -98,7 +98,7 @@ UT_TEST(norm3_sweep)
         int32_t n;
         for (j = 0u; j < 3u; j++) {
             v[j] = (int32_t)(uint32_t)(ut_rng_next(&seed) >> (32u + (i % 8u)));
-            s2 += (u128)((__extension__ (__int128)v[j]) * v[j]);
+            s2 += (u128)(((i128)v[j]) * v[j]);
         }
         n = fx_norm3(v, &st);
         if (4u * s2 >= ((u128)2u * INT32_MAX + 1u) * ((u128)2u * INT32_MAX + 1u)) {

@@ -17,14 +17,7 @@ import shlex
 import sys
 
 
-def repo_root():
-    return os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def inside(path, root):
-    path = os.path.realpath(path)
-    root = os.path.realpath(root)
-    return path == root or path.startswith(root + os.sep)
+from lintpaths import inside, repo_root  # noqa: E402  (shared helpers)
 
 
 def main():

@@ -29,14 +29,7 @@ _HDR_ANGLE = re.compile(r"^\s*<([^>]*)>\s*$")
 _HDR_QUOTE = re.compile(r'^\s*"([^"]*)"\s*$')
 
 
-def repo_root():
-    return os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def inside(path, root):
-    path = os.path.realpath(path)
-    root = os.path.realpath(root)
-    return path == root or path.startswith(root + os.sep)
+from lintpaths import inside, repo_root  # noqa: E402  (shared helpers)
 
 
 def source_files(fsw):
