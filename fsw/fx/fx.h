@@ -109,6 +109,22 @@ int32_t  fx_div(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_
 /* round(num / den) half away from zero on unsigned magnitudes; den > 0 (den == 0 -> UINT64_MAX). */
 uint64_t fx_udiv_rnd64(uint64_t num, uint64_t den);
 
+/*
+ * Reciprocal for repeated division by one divisor: made with one 64/32 divide, then each
+ * division is multiplies plus an exact integer fix-up, so results are correctly rounded.
+ * 1/d = m * 2^(sh - 60) with d as an integer, |d| << sh in [2^30, 2^31), |m| in (2^29, 2^30].
+ */
+typedef struct {
+    int32_t  d;    /* the divisor, in its own Q (integer LSBs) */
+    int32_t  m;    /* reciprocal mantissa */
+    uint32_t sh;   /* normalisation shift, [0, 30] */
+} fx_recip_t;
+/* d == 0 -> DIV0; later divisions then behave as fx_div by zero. */
+void     fx_recip_init(fx_recip_t *r, int32_t d, fx_status_t *st);
+/* round(a * 2^k / d), half away from zero, saturated to int32; k in [0, 62] (ARG otherwise).
+ * With a in qa and d in qd the result is in qa - qd + k. */
+int32_t  fx_recip_div(int64_t a, const fx_recip_t *r, uint32_t k, fx_status_t *st);
+
 /* ---------------------------------------------------------------- roots */
 /* Exact floor square root: r*r <= x < (r+1)*(r+1). 32 fixed iterations. */
 uint32_t fx_isqrt64(uint64_t x);
@@ -149,18 +165,17 @@ void     fx_vsub(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_
 typedef struct {
     int32_t a[FX_SOLVE_NMAX * FX_SOLVE_NMAX];  /* eliminated matrix, qa */
     int32_t b[FX_SOLVE_NMAX];                  /* eliminated right-hand side, qb */
-    int32_t pivot[FX_SOLVE_NMAX];              /* pivots in elimination order, qa */
-    int32_t rec[FX_SOLVE_NMAX];                /* pivot reciprocal mantissas (see fx_mat.c) */
-    uint8_t rec_sh[FX_SOLVE_NMAX];             /* their normalisation shifts */
+    fx_recip_t rec[FX_SOLVE_NMAX];             /* pivots (rec[k].d, qa) and their reciprocals */
     uint8_t perm[FX_SOLVE_NMAX];               /* perm[k]: original row used at step k */
 } fx_solve_ws_t;
 
 /*
  * Solve A x = b (n <= FX_SOLVE_NMAX) by Gaussian elimination with partial pivoting; one
- * reciprocal per pivot, then multiplies. A in qa, b in qb, x in qx; qb <= qa + qx.
+ * reciprocal per pivot, then multiplies (fx_recip_t). A in qa, b in qb, x in qx; qb <= qa + qx.
  * Headroom: partial pivoting bounds element growth by 2^(n-1), so A must leave n-1 spare
  * bits in qa; a violation saturates and is flagged. |pivot| < pivot_min (qa) -> SINGULAR and
- * x zeroed. Error bound (tested): |x - x_exact| <= 2 n kappa_inf(A) LSB of qx.
+ * x zeroed. Each x_i is correctly rounded for its triangular system; error bound (tested):
+ * |x - x_exact| <= 2 n kappa_inf(A) LSB of qx.
  */
 void     fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                   uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);

@@ -8,8 +8,6 @@
 
 /* Powers of two used as int64 scale factors (written out: no signed value is ever shifted). */
 #define P2_30_I64 INT64_C(1073741824)       /* 2^30 */
-#define P2_32_I64 INT64_C(4294967296)       /* 2^32 */
-#define P2_40_I64 INT64_C(1099511627776)    /* 2^40 */
 
 /*
  * Exact sum of n products a[i*sa] * b[i*sb], rounded by `shift` to a saturated int32. On the
@@ -112,87 +110,6 @@ void fx_vsub(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_stat
 
 /* ------------------------------------------------------------------------------ solve */
 
-/*
- * Reciprocal of a non-zero pivot p as a mantissa/exponent pair: 1/p = rec * 2^(sh - 60)
- * (p as an integer), with |p| << sh in [2^30, 2^31) and |rec| in (2^29, 2^30]. This is the
- * solve's only divide per pivot (64/32, correctly rounded): |rec error| <= 1/2, i.e. a
- * relative error <= 2^-30.
- */
-static int32_t pivot_recip(int32_t p, uint32_t *sh)
-{
-    uint32_t m = fx_uabs(p);
-    uint32_t s = 0u;
-    uint32_t i;
-    uint64_t rec;
-    for (i = 0u; (i < 31u) && (m < ((uint32_t)1 << 30)); i++) {
-        m <<= 1;
-        s++;
-    }
-    rec = fx_udiv_rnd64((uint64_t)1 << 60, (uint64_t)m);
-    *sh = s;
-    return (p < 0) ? -(int32_t)rec : (int32_t)rec;
-}
-
-/* Extra fraction bits carried by the refinement term, so the final result is rounded once. */
-#define SOLVE_REFINE_FRAC 16u
-
-/*
- * q ~= round(s / p * 2^frac) using p's reciprocal: s is first rounded to 31 significant bits
- * (s_hi = s / 2^e), so the product with rec fits int64. Relative error before the final
- * rounding <= 2^-30 + 2^-31. Returns false when |q| would exceed 2^40 (caller saturates).
- */
-static bool recip_mul(int64_t s, int32_t rec, uint32_t sh, uint32_t frac, int64_t *q)
-{
-    uint64_t m = (s < 0) ? ((uint64_t)0 - (uint64_t)s) : (uint64_t)s;
-    uint32_t e = 0u;
-    uint32_t i;
-    int32_t t;
-    bool ok = true;
-    fx_status_t ignore = 0u;  /* shifts below are in range by construction */
-    for (i = 0u; (i < 33u) && (m >= ((uint64_t)1 << 31)); i++) {
-        m >>= 1;
-        e++;
-    }
-    t = 60 - (int32_t)sh - (int32_t)e - (int32_t)frac;
-    /* With e > 0, |s_hi| >= 2^30 and |rec| > 2^29, so |q| >= 2^(59 - t): t < 19 means > 2^40. */
-    if (((e > 0u) && (t < 19)) || (t < 0)) {
-        ok = false;
-        *q = 0;
-    } else {
-        int64_t s_hi = fx_shr_rnd64(s, e, &ignore);
-        *q = fx_shr_rnd64(s_hi * (int64_t)rec, (uint32_t)t, &ignore);
-    }
-    return ok;
-}
-
-/*
- * x = round(s / p), saturated to int32. x0 comes from the reciprocal; the exact residual
- * s - p x0 then gives the remaining fraction with SOLVE_REFINE_FRAC extra bits, and the sum
- * is rounded once. The result is correctly rounded except within ~2^-14 LSB of a tie.
- */
-static int32_t div_by_pivot(int64_t s, int32_t p, int32_t rec, uint32_t sh, fx_status_t *st)
-{
-    int64_t x0;
-    int32_t r;
-    bool neg = (s < 0) != (p < 0);
-    if ((!recip_mul(s, rec, sh, 0u, &x0)) || (x0 >= P2_32_I64) || (x0 <= -P2_32_I64)) {
-        *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
-        r = neg ? INT32_MIN : INT32_MAX;
-    } else {
-        fx_status_t acc = 0u;
-        int64_t cf = 0;
-        /* |p * x0| < 2^63 and s ~= p * x0, so the residual is small and exact. */
-        int64_t resid = fx_add64_sat(s, -((int64_t)p * x0), &acc);
-        if ((acc != 0u) || (!recip_mul(resid, rec, sh, SOLVE_REFINE_FRAC, &cf)) ||
-            (cf > P2_40_I64) || (cf < -P2_40_I64)) {
-            *st |= FX_ST_ACC_OVF;
-            cf = 0;
-        }
-        r = fx_rshift_sat((x0 * fx_pow2_64(SOLVE_REFINE_FRAC, st)) + cf, SOLVE_REFINE_FRAC, st);
-    }
-    return r;
-}
-
 /* Partial pivoting for column k: swap the row with the largest |a_ik| (lowest index on ties)
    into row k. Returns that magnitude. */
 static uint32_t pivot_rows(fx_solve_ws_t *ws, uint32_t n, uint32_t k)
@@ -224,15 +141,16 @@ static uint32_t pivot_rows(fx_solve_ws_t *ws, uint32_t n, uint32_t k)
     return best;
 }
 
-/* Eliminate column k below the pivot using its reciprocal (ws->rec[k], ws->rec_sh[k]). */
+/* Eliminate column k below the pivot using its reciprocal ws->rec[k]. */
 static void eliminate(fx_solve_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st)
 {
     uint32_t i;
     uint32_t j;
-    uint32_t sh = ws->rec_sh[k];
     for (i = k + 1u; i < n; i++) {
-        /* Multiplier l = a_ik / a_kk in q30; |l| <= 1 (+1 LSB) by pivoting. */
-        int64_t l = fx_shr_rnd64((int64_t)ws->a[(i * n) + k] * (int64_t)ws->rec[k], 30u - sh, st);
+        /* Multiplier l = a_ik / a_kk in q30 straight from the reciprocal (relative error
+           <= 2^-30, |l| <= 1 + 2^-30 by pivoting): the elimination's rounding dominates, so the
+           exact fix-up of fx_recip_div would buy nothing here. */
+        int64_t l = fx_shr_rnd64((int64_t)ws->a[(i * n) + k] * (int64_t)ws->rec[k].m, 30u - ws->rec[k].sh, st);
         ws->a[(i * n) + k] = 0;
         for (j = k + 1u; j < n; j++) {
             /* a_ij - l a_kj formed exactly at 30 extra bits, rounded once. */
@@ -260,7 +178,7 @@ static void back_substitute(const fx_solve_ws_t *ws, uint32_t n, uint32_t b_shif
             s = fx_add64_sat(s, -((int64_t)ws->a[(ii * n) + j] * (int64_t)x[j]), &acc);
         }
         *st |= acc;
-        x[ii] = div_by_pivot(s, ws->pivot[ii], ws->rec[ii], ws->rec_sh[ii], st);
+        x[ii] = fx_recip_div(s, &ws->rec[ii], 0u, st);
     }
 }
 
@@ -285,14 +203,12 @@ void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b
     }
     for (k = 0u; (!fail) && (k < n); k++) {
         uint32_t best = pivot_rows(ws, n, k);
-        ws->pivot[k] = ws->a[(k * n) + k];
         if ((best == 0u) || ((int64_t)best < (int64_t)pivot_min)) {
             *st |= FX_ST_SINGULAR;
+            ws->rec[k].d = ws->a[(k * n) + k];
             fail = true;
         } else {
-            uint32_t sh = 0u;
-            ws->rec[k] = pivot_recip(ws->pivot[k], &sh);
-            ws->rec_sh[k] = (uint8_t)sh;
+            fx_recip_init(&ws->rec[k], ws->a[(k * n) + k], st);
             eliminate(ws, n, k, st);
         }
     }

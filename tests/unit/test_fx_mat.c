@@ -202,11 +202,72 @@ UT_TEST(solve_symmetry_and_determinism)
     }
 }
 
+/* fx_recip_div against C division of exact int64 numerators (|a 2^k| < 2^62 here). */
+UT_TEST(recip_div_exact)
+{
+    uint64_t seed = 99u;
+    uint32_t it;
+    static const int32_t dv[] = {1, -1, 2, 3, -3, 7, 1073741824, -1073741824, INT32_MAX, INT32_MIN, 46341};
+    for (it = 0u; it < 20000u; it++) {
+        fx_recip_t r;
+        fx_status_t st = 0u;
+        int32_t d = (it < 11u * 50u) ? dv[it % 11u] : (int32_t)(uint32_t)ut_rng_next(&seed);
+        uint32_t k = (uint32_t)(ut_rng_next(&seed) % 31u);
+        int64_t a = (int64_t)(ut_rng_next(&seed) >> (33u + k)) * (((it & 1u) != 0u) ? -1 : 1);
+        int64_t num = a * ((int64_t)1 << k);
+        int64_t q;
+        int64_t rem;
+        int64_t ud;
+        if (d == 0) {
+            continue;
+        }
+        if ((it % 5u) == 0u) {
+            /* exact tie: num = (2j + 1) d / 2 needs an even d */
+            d = (d / 2) * 2;
+            if (d == 0) {
+                d = 2;
+            }
+            num = ((int64_t)(it % 1000u) * 2 + 1) * (d / 2);
+            a = num;
+            k = 0u;
+        }
+        q = num / d;
+        rem = num % d;
+        rem = (rem < 0) ? -rem : rem;
+        ud = (d < 0) ? -(int64_t)d : (int64_t)d;
+        if (rem >= ud - rem) {
+            q += ((num < 0) != (d < 0)) ? -1 : 1;
+        }
+        fx_recip_init(&r, d, &st);
+        UT_CHECK_EQ(fx_recip_div(a, &r, k, &st), ut_ref_clamp32(q));
+        UT_CHECK_UEQ(st, (q > INT32_MAX) ? FX_ST_SAT_HI : ((q < INT32_MIN) ? FX_ST_SAT_LO : 0u));
+    }
+    {
+        fx_recip_t r;
+        fx_status_t st = 0u;
+        fx_recip_init(&r, 0, &st);
+        UT_UEQ(st, FX_ST_DIV0);
+        UT_EQ(fx_recip_div(5, &r, 0u, &st), INT32_MAX);
+        UT_EQ(fx_recip_div(-5, &r, 0u, &st), -INT32_MAX);
+        st = 0u;
+        fx_recip_init(&r, 3, &st);
+        UT_EQ(fx_recip_div(1, &r, 63u, &st), 0);
+        UT_UEQ(st, FX_ST_ARG);
+        st = 0u;
+        /* -2^62 / 2^31 = -2^31 exactly: INT32_MIN without saturation. */
+        fx_recip_init(&r, INT32_MIN, &st);
+        UT_EQ(fx_recip_div(INT64_C(1) << 62, &r, 0u, &st), INT32_MIN);
+        UT_UEQ(st, 0u);
+        UT_EQ(fx_recip_div(INT64_MIN, &r, 0u, &st), INT32_MAX);
+        UT_UEQ(st, FX_ST_SAT_HI);
+    }
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(dot_matvec_matmul_random), UT_CASE(accumulator_overflow), UT_CASE(kernel_args),
-        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism),
+        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact),
     };
     return UT_RUN("fx_mat", cases);
 }

@@ -83,6 +83,67 @@ UT_TEST(kernels_vs_exact)
            (unsigned long long)checked, ovf_exact, ovf_partial);
 }
 
+/* fx_recip_div: round(a 2^k / d) for full-range int64 a, any non-zero d, k in [0, 62]. */
+UT_TEST(recip_div_vs_exact)
+{
+    uint64_t seed = 31337u;
+    uint32_t it;
+    uint64_t checked = 0u;
+    uint64_t sat = 0u;
+    uint64_t ties = 0u;
+    for (it = 0u; it < (1u << 21); it++) {
+        uint64_t r1 = ut_rng_next(&seed);
+        uint64_t r2 = ut_rng_next(&seed);
+        uint32_t k = (uint32_t)(r1 % 63u);
+        int32_t d = (int32_t)(uint32_t)(r2 >> (32u + (uint32_t)((r1 >> 58) & 31u)));   /* varied magnitudes */
+        int64_t a = (int64_t)(ut_rng_next(&seed) >> (uint32_t)(r2 % 64u)) * (((r1 >> 7) & 1u) ? -1 : 1);
+        fx_recip_t rc;
+        fx_status_t s1 = 0u;
+        fx_status_t s2 = 0u;
+        i128 num;
+        i128 q;
+        i128 rem;
+        i128 ud;
+        int32_t want;
+        if (d == 0) {
+            continue;
+        }
+        if ((it & 15u) == 0u && (d % 2) == 0) {
+            /* exact tie */
+            a = ((int64_t)(r1 % 100000u) * 2 + 1) * (d / 2);
+            k = 0u;
+            ties++;
+        }
+        num = (i128)a * ((i128)1 << k);
+        q = num / d;
+        rem = num % d;
+        rem = (rem < 0) ? -rem : rem;
+        ud = (d < 0) ? -(i128)d : (i128)d;
+        if (2 * rem >= ud) {
+            q += ((num < 0) != (d < 0)) ? -1 : 1;
+        }
+        if (q > INT32_MAX) {
+            want = INT32_MAX;
+            s2 = FX_ST_SAT_HI;
+        } else if (q < INT32_MIN) {
+            want = INT32_MIN;
+            s2 = FX_ST_SAT_LO;
+        } else {
+            want = (int32_t)q;
+        }
+        fx_recip_init(&rc, d, &s1);
+        if (fx_recip_div(a, &rc, k, &s1) != want || s1 != s2) {
+            UT_CHECK_EQ(fx_recip_div(a, &rc, k, &s1), want);
+            printf("  a=%lld k=%u d=%d\n", (long long)a, k, d);
+            return;
+        }
+        checked++;
+        sat += (s2 != 0u) ? 1u : 0u;
+    }
+    printf("fx_recip_div: %llu cases (%llu saturating, %llu exact ties), all correctly rounded\n",
+           (unsigned long long)checked, (unsigned long long)sat, (unsigned long long)ties);
+}
+
 /* ---------------------------------------------------------------- solve */
 
 static void rand_orth(uint64_t *seed, uint32_t n, long double q[4][4])
@@ -310,7 +371,7 @@ UT_TEST(solve_singular_and_near_singular)
 int main(void)
 {
     UT_CASES(cases) = {
-        UT_CASE(kernels_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_singular_and_near_singular),
+        UT_CASE(kernels_vs_exact), UT_CASE(recip_div_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_singular_and_near_singular),
     };
     return UT_RUN("fx_mat_sweep", cases);
 }
