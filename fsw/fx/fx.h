@@ -157,6 +157,11 @@ void     fx_matvec(const int32_t *m, uint32_t qm, const int32_t *x, uint32_t qx,
                    uint32_t rows, uint32_t cols, int32_t *y, uint32_t qy, fx_status_t *st);
 void     fx_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                    uint32_t n, uint32_t k, uint32_t m, int32_t *c, uint32_t qc, fx_status_t *st);
+/* Exact int64 sum of a[i] * b[i], i < n (n <= FX_NMAX); on overflow ACC_OVF and the int64
+ * extreme in that direction. For callers that align several sums and round once. */
+int64_t  fx_dot_acc(const int32_t *a, const int32_t *b, uint32_t n, fx_status_t *st);
+/* v * 2^n exactly (n <= 62); ACC_OVF and the int64 extreme if it does not fit. */
+int64_t  fx_shl64_chk(int64_t v, uint32_t n, fx_status_t *st);
 /* y = a + b, y = a - b element-wise (same Q), saturating. */
 void     fx_vadd(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st);
 void     fx_vsub(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st);

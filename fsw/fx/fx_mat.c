@@ -86,6 +86,41 @@ void fx_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
     }
 }
 
+int64_t fx_dot_acc(const int32_t *a, const int32_t *b, uint32_t n, fx_status_t *st)
+{
+    int64_t acc = 0;
+    fx_status_t s = 0u;
+    uint32_t i;
+    if (n > FX_NMAX) {
+        *st |= FX_ST_ARG;
+    }
+    for (i = 0u; (i < n) && (i < FX_NMAX) && (s == 0u); i++) {
+        acc = fx_add64_sat(acc, (int64_t)a[i] * (int64_t)b[i], &s);
+    }
+    *st |= s;
+    return acc;
+}
+
+int64_t fx_shl64_chk(int64_t v, uint32_t n, fx_status_t *st)
+{
+    int64_t r = 0;
+    if (n > 62u) {
+        *st |= FX_ST_ARG;
+    } else if (n == 0u) {
+        r = v;
+    } else {
+        /* v 2^n fits int64 iff -2^(63-n) <= v < 2^(63-n). */
+        int64_t lim = fx_pow2_64(63u - n, st);
+        if ((v >= lim) || (v < -lim)) {
+            *st |= FX_ST_ACC_OVF;
+            r = (v > 0) ? INT64_MAX : INT64_MIN;
+        } else {
+            r = v * fx_pow2_64(n, st);
+        }
+    }
+    return r;
+}
+
 void fx_vadd(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st)
 {
     uint32_t i;

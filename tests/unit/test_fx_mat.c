@@ -263,11 +263,37 @@ UT_TEST(recip_div_exact)
     }
 }
 
+UT_TEST(dot_acc_and_shl64)
+{
+    static const int32_t a[3] = {INT32_MIN, 3, -5};
+    static const int32_t b[3] = {INT32_MIN, 7, 11};
+    static const int32_t mn[2] = {INT32_MIN, INT32_MIN};
+    fx_status_t st = 0u;
+    UT_EQ(fx_dot_acc(a, b, 3u, &st), ((int64_t)1 << 62) + 21 - 55);
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_dot_acc(mn, mn, 2u, &st), INT64_MAX);
+    UT_UEQ(st, FX_ST_ACC_OVF);
+    st = 0u;
+    UT_EQ(fx_shl64_chk(-9, 60u, &st), INT64_MIN);   /* -9 * 2^60 < -2^63 */
+    UT_UEQ(st, FX_ST_ACC_OVF);
+    st = 0u;
+    UT_EQ(fx_shl64_chk(4, 61u, &st), INT64_MAX);    /* 2^63 does not fit */
+    UT_UEQ(st, FX_ST_ACC_OVF);
+    st = 0u;
+    UT_EQ(fx_shl64_chk(-4, 61u, &st), INT64_MIN);   /* -2^63 fits exactly */
+    UT_EQ(fx_shl64_chk(-3, 60u, &st), -3 * ((int64_t)1 << 60));
+    UT_EQ(fx_shl64_chk(3, 61u, &st), 3 * ((int64_t)1 << 61));
+    UT_EQ(fx_shl64_chk(5, 0u, &st), 5);
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_shl64_chk(1, 63u, &st), 0);
+    UT_UEQ(st, FX_ST_ARG);
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(dot_matvec_matmul_random), UT_CASE(accumulator_overflow), UT_CASE(kernel_args),
-        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact),
+        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact), UT_CASE(dot_acc_and_shl64),
     };
     return UT_RUN("fx_mat", cases);
 }
