@@ -1,4 +1,4 @@
-"""python -m tools.observer {design --out DIR | check [GROUP ...]} (run from the repository root)."""
+"""python -m tools.observer {design --out DIR | ctable [--check] | truth --out H | check [GROUP ...]} (from the repo root)."""
 import argparse
 import sys
 
@@ -8,6 +8,11 @@ def main(argv=None):
     sub = ap.add_subparsers(dest="cmd", required=True)
     d = sub.add_parser("design", help="write the observer tables as JSON")
     d.add_argument("--out", required=True)
+    t = sub.add_parser("ctable", help="write (or --check) the C boot tables fsw/observer/obs_tables.[ch]")
+    t.add_argument("--out-dir", default="fsw/observer")
+    t.add_argument("--check", action="store_true")
+    u = sub.add_parser("truth", help="write the true-plant ZOH header for host tests")
+    u.add_argument("--out", required=True)
     c = sub.add_parser("check", help="run acceptance checks and print measured vs spec")
     c.add_argument("groups", nargs="*", help="s01 s02 s03 flight s06 ranges (default: all)")
     a = ap.parse_args(argv)
@@ -16,6 +21,9 @@ def main(argv=None):
         for pth in design.write(a.out):
             print(pth)
         return 0
+    if a.cmd in ("ctable", "truth"):
+        from . import ctable
+        return ctable.main(a)
     from . import checks
     groups = a.groups or list(checks.GROUPS)
     unknown = [g for g in groups if g not in checks.GROUPS]
