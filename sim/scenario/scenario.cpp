@@ -1,0 +1,323 @@
+#include "scenario/scenario.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+
+namespace sim {
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+// Collects the source name so every message says which file and key failed.
+class Reader {
+public:
+    explicit Reader(std::string source) : source_(std::move(source)) {}
+
+    [[noreturn]] void fail(const std::string &key, const YAML::Node &node, const std::string &what) const
+    {
+        std::ostringstream os;
+        os << source_ << ": key '" << key << "'";
+        if (node.IsDefined() && node.Mark().line >= 0) {
+            os << " (line " << (node.Mark().line + 1) << ")";
+        }
+        os << ": " << what;
+        throw ScenarioError(os.str());
+    }
+
+    [[noreturn]] void fail_file(const std::string &what) const { throw ScenarioError(source_ + ": " + what); }
+
+    // Unknown keys are errors: a misspelt optional key would otherwise silently keep its default.
+    void check_keys(const YAML::Node &map, const std::string &prefix, std::initializer_list<const char *> allowed) const
+    {
+        if (!map.IsMap()) {
+            fail(prefix.empty() ? std::string("<document>") : prefix, map, "must be a mapping");
+        }
+        std::set<std::string> seen;
+        for (const auto &kv : map) {
+            const std::string k = kv.first.Scalar();
+            // yaml-cpp 0.7 accepts duplicate keys and silently uses the first; refuse them.
+            if (!seen.insert(k).second) {
+                fail(join(prefix, k), kv.first, "duplicate key");
+            }
+            bool ok = false;
+            for (const char *a : allowed) {
+                ok = ok || (k == a);
+            }
+            if (!ok) {
+                fail(join(prefix, k), kv.first, "unknown key");
+            }
+        }
+    }
+
+    static std::string join(const std::string &prefix, const std::string &k)
+    {
+        return prefix.empty() ? k : prefix + "." + k;
+    }
+
+    double number(const YAML::Node &n, const std::string &key, double lo, double hi) const
+    {
+        if (!n.IsScalar()) {
+            fail(key, n, "must be a number");
+        }
+        double v = 0.0;
+        try {
+            v = n.as<double>();
+        } catch (const YAML::Exception &) {
+            fail(key, n, "not a number: '" + n.Scalar() + "'");
+        }
+        if (!std::isfinite(v)) {
+            fail(key, n, "must be finite, got '" + n.Scalar() + "'");
+        }
+        if (!(v >= lo && v <= hi)) {
+            std::ostringstream os;
+            os << "out of range: " << n.Scalar() << " not in [" << lo << ", " << hi << "]";
+            fail(key, n, os.str());
+        }
+        return v;
+    }
+
+    std::int64_t integer(const YAML::Node &n, const std::string &key, std::int64_t lo, std::int64_t hi) const
+    {
+        if (!n.IsScalar()) {
+            fail(key, n, "must be an integer");
+        }
+        long long v = 0;
+        try {
+            v = n.as<long long>();
+        } catch (const YAML::Exception &) {
+            fail(key, n, "not an integer: '" + n.Scalar() + "'");
+        }
+        if (v < lo || v > hi) {
+            std::ostringstream os;
+            os << "out of range: " << v << " not in [" << lo << ", " << hi << "]";
+            fail(key, n, os.str());
+        }
+        return static_cast<std::int64_t>(v);
+    }
+
+    std::uint64_t unsigned64(const YAML::Node &n, const std::string &key) const
+    {
+        if (!n.IsScalar() || n.Scalar().empty() || n.Scalar()[0] == '-') {
+            fail(key, n, "must be a non-negative integer");
+        }
+        try {
+            return n.as<unsigned long long>();
+        } catch (const YAML::Exception &) {
+            fail(key, n, "not a non-negative integer: '" + n.Scalar() + "'");
+        }
+    }
+
+    std::array<double, 2> pair(const YAML::Node &n, const std::string &key, double lo, double hi) const
+    {
+        if (!n.IsSequence() || n.size() != 2u) {
+            fail(key, n, "must be a list of two numbers [y, z]");
+        }
+        return {number(n[0], key + "[0]", lo, hi), number(n[1], key + "[1]", lo, hi)};
+    }
+
+    std::string text(const YAML::Node &n, const std::string &key) const
+    {
+        if (!n.IsScalar()) {
+            fail(key, n, "must be a string");
+        }
+        return n.Scalar();
+    }
+
+    const std::string &source() const { return source_; }
+
+private:
+    std::string source_;
+};
+
+Scenario parse_root(const YAML::Node &root, const Reader &r)
+{
+    Scenario s = default_scenario();
+    s.source = r.source();
+    if (!root.IsDefined() || root.IsNull()) {
+        r.fail_file("empty scenario");
+    }
+    r.check_keys(root, "",
+                 {"name", "plant", "model", "sigma", "k2_true_per_s2", "j_factor", "period_us", "duration_s",
+                  "w0_degps", "mu0_deg", "mudot0_degps", "propagator", "ode_substeps", "gyro", "gimbal", "limits"});
+
+    // Required keys: the identity of the run (spec 10 §2.2: every scenario names its sigma).
+    for (const char *k : {"name", "model", "sigma", "duration_s"}) {
+        if (!root[k]) {
+            r.fail(k, root[k], "missing required key");
+        }
+    }
+    s.name = r.text(root["name"], "name");
+    if (root["plant"]) {
+        s.plant = r.text(root["plant"], "plant");
+        if (s.plant != "sail") {
+            r.fail("plant", root["plant"], "unknown plant '" + s.plant + "' (known: sail)");
+        }
+    }
+    const std::int64_t sig = r.integer(root["sigma"], "sigma", -1, 1);
+    if (sig == 0) {
+        r.fail("sigma", root["sigma"], "must be +1 (M-phys) or -1 (M-paper)");
+    }
+    s.sigma = static_cast<int>(sig);
+    // sigma and model are both required and must agree, so a run never mixes them silently.
+    const std::string model = r.text(root["model"], "model");
+    if (model != "M-phys" && model != "M-paper") {
+        r.fail("model", root["model"], "must be M-phys or M-paper, got '" + model + "'");
+    }
+    if (model != sigma_name(s.sigma)) {
+        r.fail("model", root["model"], "'" + model + "' contradicts sigma = " + std::to_string(s.sigma));
+    }
+    if (root["k2_true_per_s2"]) {
+        s.k2_true_per_s2 = r.number(root["k2_true_per_s2"], "k2_true_per_s2", 1e-6, 1.0);
+    }
+    if (root["j_factor"]) {
+        s.j_factor = r.number(root["j_factor"], "j_factor", 0.5, 2.0);
+    }
+    if (root["period_us"]) {
+        s.period_us = static_cast<std::uint32_t>(r.integer(root["period_us"], "period_us", 100, 10000000));
+    }
+    s.duration_s = r.number(root["duration_s"], "duration_s", 0.0, 1.0e5);
+    if (root["w0_degps"]) {
+        const auto w = r.pair(root["w0_degps"], "w0_degps", -1000.0, 1000.0);
+        s.w0_radps = {w[0] * kDegToRad, w[1] * kDegToRad};
+    }
+    if (root["mu0_deg"]) {
+        const auto m = r.pair(root["mu0_deg"], "mu0_deg", -90.0, 90.0);
+        s.mu0_rad = {m[0] * kDegToRad, m[1] * kDegToRad};
+    }
+    if (root["mudot0_degps"]) {
+        const auto m = r.pair(root["mudot0_degps"], "mudot0_degps", -1000.0, 1000.0);
+        s.mudot0_radps = {m[0] * kDegToRad, m[1] * kDegToRad};
+    }
+    if (root["propagator"]) {
+        const std::string p = r.text(root["propagator"], "propagator");
+        if (p == "zoh") {
+            s.propagator = Propagator::Zoh;
+        } else if (p == "ode") {
+            s.propagator = Propagator::Ode;
+        } else {
+            r.fail("propagator", root["propagator"], "must be zoh or ode, got '" + p + "'");
+        }
+    }
+    if (root["ode_substeps"]) {
+        s.ode_substeps = static_cast<std::uint32_t>(r.integer(root["ode_substeps"], "ode_substeps", 0, 1000000));
+    }
+
+    if (const YAML::Node g = root["gyro"]) {
+        r.check_keys(g, "gyro", {"noise_radps", "bias_radps", "bias_sigma_radps", "seed", "lsb_shift", "max_cnt"});
+        if (g["noise_radps"]) {
+            s.gyro.noise_radps = r.number(g["noise_radps"], "gyro.noise_radps", 0.0, 1.0);
+        }
+        if (g["bias_radps"]) {
+            s.gyro.bias_radps = r.pair(g["bias_radps"], "gyro.bias_radps", -1.0, 1.0);
+        }
+        if (g["bias_sigma_radps"]) {
+            s.gyro.bias_sigma_radps = r.number(g["bias_sigma_radps"], "gyro.bias_sigma_radps", 0.0, 1.0);
+        }
+        if (g["seed"]) {
+            s.gyro.seed = r.unsigned64(g["seed"], "gyro.seed");
+        }
+        if (g["lsb_shift"]) {
+            s.gyro.lsb_shift = static_cast<int>(r.integer(g["lsb_shift"], "gyro.lsb_shift", 0, 30));
+        }
+        if (g["max_cnt"]) {
+            s.gyro.max_cnt = static_cast<std::int32_t>(r.integer(g["max_cnt"], "gyro.max_cnt", 1, INT32_MAX));
+        }
+    }
+    if (const YAML::Node g = root["gimbal"]) {
+        r.check_keys(g, "gimbal", {"lsb_shift", "hw_limit_radps"});
+        if (g["lsb_shift"]) {
+            s.gimbal.lsb_shift = static_cast<int>(r.integer(g["lsb_shift"], "gimbal.lsb_shift", 0, 30));
+        }
+        if (g["hw_limit_radps"]) {
+            s.gimbal.hw_limit_radps = r.number(g["hw_limit_radps"], "gimbal.hw_limit_radps", 1e-6, 10.0);
+        }
+    }
+    if (const YAML::Node l = root["limits"]) {
+        r.check_keys(l, "limits", {"mu_max_deg", "w_max_degps"});
+        if (l["mu_max_deg"]) {
+            s.mu_max_rad = r.number(l["mu_max_deg"], "limits.mu_max_deg", 1e-6, 90.0) * kDegToRad;
+        }
+        if (l["w_max_degps"]) {
+            s.w_max_radps = r.number(l["w_max_degps"], "limits.w_max_degps", 1e-6, 1000.0) * kDegToRad;
+        }
+    }
+    // Cross-key checks.
+    if (s.n_steps() == 0u) {
+        r.fail("duration_s", root["duration_s"], "shorter than one period");
+    }
+    for (std::size_t i = 0; i < 2u; ++i) {
+        if (std::fabs(s.w0_radps[i]) > s.w_max_radps) {
+            r.fail("w0_degps", root["w0_degps"], "initial rate beyond limits.w_max_degps");
+        }
+        if (std::fabs(s.mu0_rad[i]) > s.mu_max_rad) {
+            r.fail("mu0_deg", root["mu0_deg"], "initial tilt beyond limits.mu_max_deg");
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+double GyroConfig::lsb_radps() const { return std::ldexp(1.0, -lsb_shift); }
+double GimbalConfig::lsb_radps() const { return std::ldexp(1.0, -lsb_shift); }
+
+std::uint64_t Scenario::n_steps() const
+{
+    const double n = std::floor(duration_s / h_s() + 0.5);
+    // duration_s is range-checked by the loader; guard anyway before the cast (UB otherwise).
+    if (!(n >= 0.0 && n < 1.0e12)) {
+        return 0u;
+    }
+    return static_cast<std::uint64_t>(n);
+}
+
+Scenario default_scenario()
+{
+    Scenario s;
+    s.name = "default";
+    s.source = "<built-in>";
+    s.sigma = +1;
+    s.w0_radps = {1.0 * kDegToRad, 1.0 * kDegToRad};
+    s.mu_max_rad = 30.0 * kDegToRad;
+    s.w_max_radps = 30.0 * kDegToRad;
+    return s;
+}
+
+const char *sigma_name(int sigma) { return sigma > 0 ? "M-phys" : "M-paper"; }
+
+Scenario parse_scenario(const std::string &yaml_text, const std::string &source_name)
+{
+    const Reader r(source_name);
+    YAML::Node root;
+    try {
+        root = YAML::Load(yaml_text);
+    } catch (const YAML::Exception &e) {
+        r.fail_file(std::string("YAML syntax error: ") + e.what());
+    }
+    try {
+        return parse_root(root, r);
+    } catch (const ScenarioError &) {
+        throw;
+    } catch (const YAML::Exception &e) {
+        r.fail_file(std::string("YAML error: ") + e.what());
+    }
+}
+
+Scenario load_scenario(const std::string &path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw ScenarioError(path + ": cannot open scenario file");
+    }
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parse_scenario(ss.str(), path);
+}
+
+}  // namespace sim

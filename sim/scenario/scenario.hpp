@@ -1,0 +1,72 @@
+// Scenario description (spec 10 §2.4, §6) and its YAML loader.
+#ifndef SIM_SCENARIO_SCENARIO_HPP
+#define SIM_SCENARIO_SCENARIO_HPP
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace sim {
+
+// Thrown for every problem in a scenario file; what() names the file, the key and (when
+// yaml-cpp knows it) the line, e.g. "s.yaml: key 'gyro.noise_radps' (line 12): must be >= 0".
+class ScenarioError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct GyroConfig {
+    double noise_radps = 0.0;                 // white noise 1-sigma per sample
+    std::array<double, 2> bias_radps{};       // fixed constant bias (y, z)
+    double bias_sigma_radps = 0.0;            // extra constant bias drawn once per run from the seed
+    std::uint64_t seed = 0u;
+    int lsb_shift = 20;                       // LSB = 2^-lsb_shift rad/s
+    std::int32_t max_cnt = (1 << 20) - 1;     // full scale, counts; SAT at |count| == max_cnt
+    double lsb_radps() const;
+};
+
+struct GimbalConfig {
+    int lsb_shift = 20;                       // LSB = 2^-lsb_shift rad/s
+    double hw_limit_radps = 0.35;             // hardware clip per axis
+    double lsb_radps() const;
+};
+
+enum class Propagator { Zoh, Ode };
+
+struct Scenario {
+    std::string name;
+    std::string source;                       // file it came from (for messages and logs)
+    std::string plant = "sail";
+    int sigma = +1;                           // +1 M-phys, -1 M-paper
+    double k2_true_per_s2 = 0.01;
+    double j_factor = 1.0;
+    std::uint32_t period_us = 20000u;
+    double duration_s = 120.0;
+    std::array<double, 2> w0_radps{};
+    std::array<double, 2> mu0_rad{};
+    std::array<double, 2> mudot0_radps{};
+    GyroConfig gyro;
+    GimbalConfig gimbal;
+    double mu_max_rad = 0.0;                  // DIVERGED above this |mu| (per axis)
+    double w_max_radps = 0.0;                 // DIVERGED above this |w| (per axis)
+    Propagator propagator = Propagator::Zoh;
+    std::uint32_t ode_substeps = 0u;          // 0: automatic (|lambda|max * h_sub <= 1e-3)
+
+    double h_s() const { return static_cast<double>(period_us) * 1e-6; }
+    std::uint64_t n_steps() const;            // round(duration / h)
+};
+
+// Built-in defaults (spec 10 §6): M-phys, 50 Hz, w0 = (1, 1) deg/s, no noise, 120 s.
+Scenario default_scenario();
+
+// Parse YAML text; source_name is used in error messages.
+Scenario parse_scenario(const std::string &yaml_text, const std::string &source_name);
+// Load and parse a file; errors name the path.
+Scenario load_scenario(const std::string &path);
+
+const char *sigma_name(int sigma);  // "M-phys" / "M-paper"
+
+}  // namespace sim
+
+#endif
