@@ -30,6 +30,8 @@
 #include <stddef.h>
 #include "board.h"
 #include "fx.h"
+#include "obs.h"
+#include "obs_tables.h"
 
 typedef void (*bench_fn_t)(uint32_t sample);
 
@@ -331,6 +333,42 @@ static void bn_solve2(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve2, i); }
 static void bk_crc(uint32_t i)      { bench_sink_u = fx_crc32(0u, s_crc[i], 64u); }
 static void bn_crc(uint32_t i)      { bench_sink_u = bench_null_crc(0u, s_crc[i], 64u); }
 
+/* Observer step on the flight table. Input: a 1 deg/s rate vector turning at the platform
+   nutation frequency (50.98 rad/s, 1.0196 rad = 696952218 BAM per 20 ms step), i.e. gyro
+   counts a real detumbling start looks like; both wrappers build it, so the difference is
+   obs_step alone. Each bracket runs 5 consecutive steps (mean per step). */
+void bench_null_obs(obs_state_t *s, const obs_params_t *p, const obs_in_t *in, obs_out_t *out);
+static obs_state_t s_obs;
+static obs_out_t s_obs_out;
+static uint32_t s_obs_seq;
+static obs_in_t obs_next(void)
+{
+    obs_in_t in;
+    int32_t sn;
+    int32_t cs;
+    fx_status_t st = 0u;
+    s_obs_seq++;
+    fx_sincos(s_obs_seq * 696952218u, &sn, &cs);
+    in.seq = s_obs_seq;
+    in.gyro_cnt[0] = (int32_t)fx_shr_rnd64((int64_t)18301 * cs, 30u, &st);   /* 1 deg/s in 2^-20 rad/s */
+    in.gyro_cnt[1] = (int32_t)fx_shr_rnd64((int64_t)18301 * sn, 30u, &st);
+    in.stale = 0u;
+    in.sat = 0u;
+    return in;
+}
+static void bk_obs(uint32_t i)
+{
+    obs_in_t in = obs_next();
+    (void)i;
+    obs_step(&s_obs, &OBS_TBL_50HZ_PHYS, &in, &s_obs_out);
+}
+static void bn_obs(uint32_t i)
+{
+    obs_in_t in = obs_next();
+    (void)i;
+    bench_null_obs(&s_obs, &OBS_TBL_50HZ_PHYS, &in, &s_obs_out);
+}
+
 static void bench_empty(uint32_t i)
 {
     (void)i;
@@ -410,6 +448,7 @@ int main(void)
         { "fx_solve_n4", bk_solve4, bn_solve4 },
         { "fx_solve_n2", bk_solve2, bn_solve2 },
         { "fx_crc32_64B", bk_crc, bn_crc },
+        { "obs_step_50hz_phys", bk_obs, bn_obs },
     };
     size_t k;
     uint32_t i;
@@ -423,6 +462,10 @@ int main(void)
     bench_put_u32(empty);
     board_console_write("\n");
     bench_fill();
+    (void)obs_init(&s_obs, &OBS_TBL_50HZ_PHYS, &s_obs_out);
+    for (i = 0u; i < 10u; i++) {
+        bk_obs(i);   /* initialise the filter; measure steady-state steps */
+    }
     for (k = 0u; k < (sizeof(kernels) / sizeof(kernels[0])); k++) {
         const bench_kernel_t *bk = &kernels[k];
         for (i = 0u; i < BENCH_SAMPLES; i++) {

@@ -110,3 +110,4 @@ bench_sled_\n:
     NULLFN bench_null_matmul
     NULLFN bench_null_solve
     NULLFN bench_null_crc
+    NULLFN bench_null_obs
