@@ -340,9 +340,9 @@ static void bn_crc(uint32_t i)      { bench_sink_u = bench_null_crc(0u, s_crc[i]
 void bench_null_obs(obs_state_t *s, const obs_params_t *p, const obs_in_t *in, obs_out_t *out);
 static obs_state_t s_obs;
 static obs_out_t s_obs_out;
-static uint32_t s_obs_seq;
 static obs_in_t obs_next(void)
 {
+    static uint32_t s_obs_seq;   /* bench image only: the synthetic stream's clock */
     obs_in_t in;
     int32_t sn;
     int32_t cs;
