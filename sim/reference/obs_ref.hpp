@@ -1,0 +1,56 @@
+// obs_ref — the observer step of fsw/observer in double precision with Eigen (spec 10-observer §5).
+//
+// Same algorithm, same order, same decisions (validity, vector limit, quantised command, kappa
+// clamp, covariance clip), on the dequantised table values, so the fixed-point step and this one
+// differ by arithmetic rounding only. Covers the EKF path of a nominal step (both axes valid,
+// sequence advancing by one); the fault paths are exercised by the fixed-point unit tests.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <cstdint>
+
+extern "C" {
+#include "obs.h"
+}
+
+namespace ref {
+
+struct ObsTable {
+    Eigen::Matrix<double, 6, 6> phi0, phik;
+    Eigen::Matrix<double, 6, 2> gam0, gamk;
+    Eigen::Matrix<double, 2, 6> d;
+    Eigen::Matrix<double, 7, 1> s;          // scales 2^ls
+    Eigen::Matrix<double, 7, 7> q;          // scaled process noise (diagonal)
+    double r, p_floor, p_ceil;              // scaled
+    double kappa0, kappa_lo, kappa_hi;
+    double bdot_max;                        // rad/s
+    double gyro_lsb, act_lsb;               // rad/s per count
+    int32_t act_max_cnt;
+};
+
+// Dequantise a C table (integer / 2^q), the values the fixed-point code effectively uses.
+ObsTable dequantise(const obs_params_t &p);
+
+struct ObsState {
+    Eigen::Matrix<double, 6, 1> x;          // rad/s, rad
+    double kappa;                           // K / 0.01 s^-2
+    Eigen::Matrix<double, 7, 7> p;          // scaled covariance
+};
+
+// The fixed-point state read as real values (for per-step golden comparisons).
+ObsState from_fixed(const obs_state_t &s);
+
+struct ObsStepOut {
+    std::array<int32_t, 2> cmd_cnt;
+    bool limited;
+    // Intermediates of the step, for golden tests that derive their error bounds per step.
+    Eigen::Matrix<double, 7, 2> gain;       // scaled Kalman gains L_s, one column per channel
+    Eigen::Matrix<double, 7, 7> fs;         // scaled transition matrix of the time update
+    Eigen::Matrix<double, 6, 2> gam;        // Gamma(kappa) of the time update
+};
+
+// One nominal EKF step from state st with gyro counts y_cnt: update, command, predict.
+ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt);
+
+}  // namespace ref
