@@ -1,0 +1,39 @@
+// backend.hpp — where the flight software runs, behind one call (ARCHITECTURE "hil_host").
+//
+// The bridge core hands a validated frame k to step() and gets command k and the telemetry
+// bytes back. InProcessObsBackend (obs_backend.hpp) runs the flight code in this process (SIL);
+// a serial PIL/HIL backend (framed link to a board or QEMU) implements the same interface, so
+// the LCM node never changes.
+#ifndef HIL_BRIDGE_BACKEND_HPP
+#define HIL_BRIDGE_BACKEND_HPP
+
+#include <cstdint>
+
+#include "bridge_types.hpp"
+
+namespace bridge {
+
+struct StepOutput {
+    std::int16_t n_counts = 0;
+    std::int32_t counts[kMaxCounts] = {};
+    std::int32_t fsw_mode = 0;
+    std::uint32_t fsw_health = 0;
+    std::int32_t tlm_layout_version = 0;
+    std::int16_t tlm_len = 0;                 // 0..kMaxTlm
+    std::uint8_t tlm[kMaxTlm] = {};
+};
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+    // (Re)initialise the flight software; true on success.
+    virtual bool reset() = 0;
+    // One step on frame k. false = the backend could not produce a command (e.g. link down);
+    // the bridge then publishes nothing and does not advance its gate.
+    virtual bool step(const Frame &f, StepOutput &out) = 0;
+    virtual const char *name() const = 0;
+};
+
+}  // namespace bridge
+
+#endif  // HIL_BRIDGE_BACKEND_HPP

@@ -1,0 +1,71 @@
+#include "bridge.hpp"
+
+#include "lcm_codec.hpp"
+
+namespace bridge {
+
+Reply Bridge::on_frame(const Frame &in)
+{
+    Reply r{};
+    if (val_.check_header(in) != FrameVerdict::Ok) {
+        sat_inc(counters_.malformed);
+        r.outcome = Outcome::Malformed;
+        return r;
+    }
+    const GateAction a = gate_.classify(in.seq);
+    if ((a == GateAction::Duplicate) || (a == GateAction::Stale)) {
+        const Command *c = gate_.answer(a, counters_);
+        r.outcome = (a == GateAction::Duplicate) ? Outcome::Duplicate : Outcome::Stale;
+        if (c != nullptr) {
+            r.cmd = *c;
+            r.publish_cmd = true;
+        }
+        return r;
+    }
+    Frame f = in;
+    (void)val_.apply_ranges(f, counters_);
+    StepOutput so{};
+    if (!be_.step(f, so)) {
+        r.outcome = Outcome::BackendFailed;
+        return r;
+    }
+    Command cmd{};
+    cmd.utime = f.utime;
+    cmd.seq = f.seq;
+    cmd.n_counts = (so.n_counts < 0) ? static_cast<std::int16_t>(0)
+                 : ((so.n_counts > static_cast<std::int16_t>(kMaxCounts)) ? static_cast<std::int16_t>(kMaxCounts) : so.n_counts);
+    for (std::size_t i = 0; i < kMaxCounts; ++i) {
+        cmd.counts[i] = (i < static_cast<std::size_t>(cmd.n_counts)) ? so.counts[i] : 0;
+    }
+    cmd.fsw_mode = so.fsw_mode;
+    cmd.fsw_health = so.fsw_health;
+    const Command *c = gate_.commit(a, f.seq, &cmd, counters_);
+    r.outcome = (a == GateAction::Gap) ? Outcome::Gap : Outcome::Stepped;
+    r.cmd = *c;
+    r.publish_cmd = true;
+    r.publish_tlm = true;
+    r.tlm.utime = f.utime;
+    r.tlm.seq = f.seq;
+    r.tlm.tlm_layout_version = so.tlm_layout_version;
+    r.tlm.tlm_len = ((so.tlm_len >= 0) && (static_cast<std::size_t>(so.tlm_len) <= kMaxTlm))
+                        ? so.tlm_len : static_cast<std::int16_t>(0);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(r.tlm.tlm_len); ++i) {
+        r.tlm.tlm[i] = so.tlm[i];
+    }
+    r.tlm.counters = counters_;
+    return r;
+}
+
+Reply Bridge::on_bytes(const std::uint8_t *buf, std::size_t len)
+{
+    Frame f{};
+    if (!decode_frame(buf, len, f)) {
+        sat_inc(counters_.malformed);
+        Reply r{};
+        r.outcome = Outcome::Malformed;
+        return r;
+    }
+    return on_frame(f);
+}
+
+}  // namespace bridge

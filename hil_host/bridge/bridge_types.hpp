@@ -1,0 +1,98 @@
+// bridge_types.hpp — transport-independent messages and counters of the host bridge
+// (spec 00 §5.1, §5.2, §8). Plain fixed-size structs mirroring the LCM types field for field;
+// lcm_codec.hpp converts them to and from the generated gnc:: C++ types and wire bytes.
+#ifndef HIL_BRIDGE_TYPES_HPP
+#define HIL_BRIDGE_TYPES_HPP
+
+#include <cstddef>
+#include <cstdint>
+
+namespace bridge {
+
+constexpr std::size_t kMaxCounts = 16;   // sensor_frame_t / actuator_cmd_t counts[16]
+constexpr std::size_t kMaxTlm = 512;     // fsw_tlm_frame_t tlm[512]
+
+// Frames outside [0, kMaxSeq] are malformed, so seq +- 1 arithmetic never overflows.
+constexpr std::int64_t kMaxSeq = INT64_C(1) << 62;
+
+constexpr std::int8_t kStatusStale = 1;  // sensor_frame_t::STATUS_STALE
+constexpr std::int8_t kStatusSat = 2;    // sensor_frame_t::STATUS_SAT
+
+// Plant -> bridge: sensor frame k (integer counts only).
+struct Frame {
+    std::int64_t utime = 0;
+    std::int64_t seq = 0;
+    std::int32_t period_us = 0;
+    std::int16_t n_counts = 0;
+    std::int32_t counts[kMaxCounts] = {};
+    std::int8_t status[kMaxCounts] = {};
+    std::int32_t scenario_flags = 0;
+    std::int32_t plant_flags = 0;
+};
+
+// Bridge -> plant: command k (utime and seq echoed from frame k).
+struct Command {
+    std::int64_t utime = 0;
+    std::int64_t seq = 0;
+    std::int16_t n_counts = 0;
+    std::int32_t counts[kMaxCounts] = {};
+    std::int32_t fsw_mode = 0;
+    std::uint32_t fsw_health = 0;   // carried as int32 bits on the wire
+};
+
+// Cumulative bridge counters; every one saturates at INT32_MAX (fsw_tlm_frame_t comment).
+struct Counters {
+    std::int32_t stepped = 0;        // backend steps (seq == last+1 or a gap)
+    std::int32_t dups = 0;           // seq == last: cached command re-published
+    std::int32_t stale = 0;          // seq < last: dropped
+    std::int32_t gaps = 0;           // gap events: seq > last+1 (stepped)
+    std::int32_t gap_frames = 0;     // frames skipped over by the gap events (sum of seq-last-1)
+    std::int32_t nonfinite_rej = 0;  // SI values rejected by std::isfinite (before any cast)
+    std::int32_t range_rej = 0;      // channel values outside the sensor-table limits
+    std::int32_t malformed = 0;      // frames refused whole: undecodable, n_counts/period/seq bad
+    std::int32_t missed = 0;         // missed commands reported by the plant
+    std::int32_t table_rej = 0;      // table uploads refused (not produced by this core yet)
+};
+
+// Bridge -> logger: telemetry of step k plus the counters.
+struct Telemetry {
+    std::int64_t utime = 0;
+    std::int64_t seq = 0;
+    std::int32_t tlm_layout_version = 0;
+    std::int16_t tlm_len = 0;
+    std::uint8_t tlm[kMaxTlm] = {};
+    Counters counters;
+};
+
+// Saturating counter increment by a non-negative amount (INT32_MAX sticks; by is clamped).
+inline void sat_inc(std::int32_t &c, std::int64_t by = 1)
+{
+    const std::int64_t b = (by < 0) ? 0 : ((by > INT32_MAX) ? INT32_MAX : by);
+    const std::int64_t v = static_cast<std::int64_t>(c) + b;
+    c = (v > INT32_MAX) ? INT32_MAX : static_cast<std::int32_t>(v);
+}
+
+// "rejected" of fsw_tlm_frame_t: every rejection event, i.e. nonfinite_rej + range_rej +
+// table_rej + malformed, saturating.
+inline std::int32_t rejected_total(const Counters &c)
+{
+    const std::int64_t v = static_cast<std::int64_t>(c.nonfinite_rej) + c.range_rej + c.table_rej +
+                           c.malformed;
+    return (v > INT32_MAX) ? INT32_MAX : static_cast<std::int32_t>(v);
+}
+
+// uint32 bit set <-> int32 wire value without implementation-defined conversions.
+inline std::int32_t bits_to_i32(std::uint32_t v)
+{
+    return (v <= 0x7FFFFFFFu) ? static_cast<std::int32_t>(v)
+                              : static_cast<std::int32_t>(static_cast<std::int64_t>(v) - INT64_C(0x100000000));
+}
+inline std::uint32_t i32_to_bits(std::int32_t v)
+{
+    return (v >= 0) ? static_cast<std::uint32_t>(v)
+                    : static_cast<std::uint32_t>(static_cast<std::int64_t>(v) + INT64_C(0x100000000));
+}
+
+}  // namespace bridge
+
+#endif  // HIL_BRIDGE_TYPES_HPP
