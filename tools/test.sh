@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite (README command 2; .ci/run calls this).
 # Installs what is missing, then for each preset configures, builds and runs CTest:
-#   host (every host proof + unit/golden tests), asan-ubsan, cortex-m3 and cortex-m4 (QEMU).
-# Usage: tools/test.sh [preset ...]      default: host asan-ubsan cortex-m3 cortex-m4
+#   host (every host proof + unit/golden tests), asan-ubsan, cortex-m3 and cortex-m4 (QEMU),
+#   fuzz (clang-14 + libFuzzer, label fuzz only).
+# Usage: tools/test.sh [preset ...]      default: host asan-ubsan cortex-m3 cortex-m4 fuzz
 # Environment: FSW_TEST_JOBS (default: nproc), CTEST_ARGS (extra ctest arguments).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -14,7 +15,7 @@ JOBS="${FSW_TEST_JOBS:-$(nproc)}"
 PRESETS=("$@")
 if ((${#PRESETS[@]} == 0)); then
     # host first: the target presets compare their golden digests with build/host.
-    PRESETS=(host asan-ubsan cortex-m3 cortex-m4)
+    PRESETS=(host asan-ubsan cortex-m3 cortex-m4 fuzz)
 fi
 
 total_pass=0
