@@ -1,41 +1,22 @@
-// fault_rng.hpp — the fault layer's own RNG: splitmix64 seeding xoshiro256**. Integer-only,
-// no std::random distributions, so a seed gives the same draws on every platform and library.
+// fault_rng.hpp — the fault layer's front-end on the project's deterministic generator
+// (sim/sensors/xoshiro256.hpp): integer-only decisions, no std::random distributions.
 #ifndef HIL_FAULT_RNG_HPP
 #define HIL_FAULT_RNG_HPP
 
 #include <cstdint>
 
+#include "sensors/xoshiro256.hpp"
+
 namespace fault {
 
-inline std::uint64_t splitmix64(std::uint64_t &x)
-{
-    std::uint64_t z = (x += UINT64_C(0x9E3779B97F4A7C15));
-    z = (z ^ (z >> 30)) * UINT64_C(0xBF58476D1CE4E5B9);
-    z = (z ^ (z >> 27)) * UINT64_C(0x94D049BB133111EB);
-    return z ^ (z >> 31);
-}
+using detrng::splitmix64;
 
+// The fault layer's front-end on the project's generator: seed words straight from splitmix64
+// of the seed, plus integer-only decisions.
 class Xoshiro256ss {
 public:
-    explicit Xoshiro256ss(std::uint64_t seed)
-    {
-        std::uint64_t x = seed;
-        for (std::uint64_t &w : s_) {
-            w = splitmix64(x);
-        }
-    }
-    std::uint64_t next()
-    {
-        const std::uint64_t r = rotl(s_[1] * 5u, 7) * 9u;
-        const std::uint64_t t = s_[1] << 17;
-        s_[2] ^= s_[0];
-        s_[3] ^= s_[1];
-        s_[1] ^= s_[2];
-        s_[0] ^= s_[3];
-        s_[2] ^= t;
-        s_[3] = rotl(s_[3], 45);
-        return r;
-    }
+    explicit Xoshiro256ss(std::uint64_t seed) : core_(seed) {}
+    std::uint64_t next() { return core_.next(); }
     // Uniform in [0, n) for n >= 1 (Lemire's multiply-shift with rejection; unbiased).
     std::uint32_t below(std::uint32_t n)
     {
@@ -55,11 +36,7 @@ public:
     bool chance_ppm(std::uint32_t ppm) { return below(1000000u) < ppm; }
 
 private:
-    static std::uint64_t rotl(std::uint64_t x, int k)
-    {
-        return (x << k) | (x >> (64 - k));
-    }
-    std::uint64_t s_[4] = {};
+    detrng::Xoshiro256ss core_;
 };
 
 }  // namespace fault

@@ -5,39 +5,21 @@
 
 namespace sim {
 
-std::uint64_t splitmix64(std::uint64_t *state)
-{
-    std::uint64_t z = (*state += UINT64_C(0x9E3779B97F4A7C15));
-    z = (z ^ (z >> 30)) * UINT64_C(0xBF58476D1CE4E5B9);
-    z = (z ^ (z >> 27)) * UINT64_C(0x94D049BB133111EB);
-    return z ^ (z >> 31);
-}
+std::uint64_t splitmix64(std::uint64_t *state) { return detrng::splitmix64(*state); }
 
-Rng::Rng(std::uint64_t seed, std::uint64_t stream_id)
+namespace {
+// Mix the stream id in through a second splitmix so that (seed, stream) pairs never collide
+// for small integers.
+std::uint64_t stream_state(std::uint64_t seed, std::uint64_t stream_id)
 {
-    // Mix the stream id in through a second splitmix so that (seed, stream) pairs never
-    // collide for small integers.
     std::uint64_t mix = stream_id;
-    std::uint64_t st = seed ^ splitmix64(&mix);
-    for (std::uint64_t &w : s_) {
-        w = splitmix64(&st);
-    }
+    return seed ^ detrng::splitmix64(mix);
 }
+}  // namespace
 
-static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+Rng::Rng(std::uint64_t seed, std::uint64_t stream_id) : core_(stream_state(seed, stream_id)) {}
 
-std::uint64_t Rng::next_u64()
-{
-    const std::uint64_t result = rotl(s_[1] * 5u, 7) * 9u;
-    const std::uint64_t t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-}
+std::uint64_t Rng::next_u64() { return core_.next(); }
 
 double Rng::uniform()
 {

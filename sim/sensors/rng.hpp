@@ -9,6 +9,8 @@
 
 #include <cstdint>
 
+#include "sensors/xoshiro256.hpp"
+
 namespace sim {
 
 // splitmix64 step: seeds xoshiro and derives independent stream seeds.
@@ -28,7 +30,7 @@ public:
     double gaussian();
 
 private:
-    std::uint64_t s_[4];
+    detrng::Xoshiro256ss core_;
 };
 
 // Natural log for x > 0 using only exact IEEE operations (frexp decomposition and an atanh
