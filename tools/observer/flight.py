@@ -6,7 +6,7 @@ from . import paper as p
 
 H_FLIGHT = 0.02
 ZETA_S = 0.05
-ORIENT_5HZ = (-1, +1)   # (D, W): Schur-branch orientation reproducing the spec's 5 Hz D and word-length row
+ORIENT_5HZ = (-1, -1)   # (D, W): Schur-branch orientation (det(V B) > 0 convention, paper.closure_step) reproducing the spec's 5 Hz D and word-length row
 
 
 def conj_set(up):

@@ -64,9 +64,12 @@ def closure_step(Ac, B, lam, target, tol=1e-3, orient=+1):
     """One step of section 3.2. Returns D_i (m x n) with V(Ac - B D_i) = Phi_t V.
 
     For a repeated eigenvalue the real Schur basis is not unique: a sign flip of one Schur vector
-    transposes the target block relative to M and changes D_i (same eigenvalues). The sign is
-    canonicalised (T[0,1] >= 0) so the result does not depend on LAPACK; orient=-1 selects the
-    transposed target block [[a, b], [-b, a]] in that branch."""
+    transposes the target block relative to M and changes D_i (same eigenvalues). At the double
+    eigenvalue 1 the block is semi-simple (T = I to 1e-15), so T[0,1] carries no sign and any
+    orthonormal basis of the subspace is a Schur basis: rotations leave D_i unchanged, reflections
+    flip it. The orientation is therefore fixed by det(V B) > 0 (the input directions), which
+    does not depend on LAPACK (a T[0,1] >= 0 rule did, and flipped W3 between scipy versions);
+    orient=-1 selects the transposed target block [[a, b], [-b, a]] in that branch."""
     ev = np.linalg.eigvals(Ac)
     schur_branch = False
     # re-identify lambda as the current eigenvalue nearest its nominal value (Im >= 0 for pairs)
@@ -86,7 +89,7 @@ def closure_step(Ac, B, lam, target, tol=1e-3, orient=+1):
             z = x if y is None else complex(x, y)
             return abs(z - ref) < tol
         T, Z, r = schur(Ac.T, output="real", sort=sel)
-        if r == 2 and T[0, 1] < 0:
+        if r == 2 and np.linalg.det(Z[:, :2].T @ B) < 0:
             Z = Z.copy()
             T = T.copy()
             Z[:, 1] = -Z[:, 1]
