@@ -292,14 +292,23 @@ static uint32_t command(obs_state_t *s, const obs_params_t *p, int32_t *u_q29, f
 
 /* Quantise the command to actuator counts and give back exactly what the actuator applies:
    the model must propagate with the quantised command, or the filter reads the quantisation
-   error (up to half a count per step) as a stiffness error (measured: K_hat 7 % low). */
-static void to_counts(const obs_params_t *p, int32_t *u_q29, obs_out_t *out, fx_status_t *st)
+   error (up to half a count per step) as a stiffness error (measured: K_hat 7 % low).
+   With shape set, the quantisation is error-feedback (first-order noise shaping): the part of
+   the command a count could not carry this step is added to the next one, so the gimbal angle
+   the actuator integrates stays within half a count-period of the commanded one instead of
+   random-walking. Rounding each step alone leaves a limit cycle of 4e-4 deg/s on M-paper
+   (fsw/observer/README.md "Command quantisation"). The residual is below half a count; a clip
+   at the actuator range, an unshaped (zero or held) command and init clear it. */
+static void to_counts(obs_state_t *s, const obs_params_t *p, int32_t *u_q29, bool shape, obs_out_t *out,
+                      fx_status_t *st)
 {
     uint32_t i;
     for (i = 0u; i < OBS_NU; i++) {
         fx_status_t clip = 0u;   /* designated point: the actuator range */
-        out->bdot_cmd_cnt[i] = fx_to_count(u_q29[i], 1, p->act_cnt_shift, -p->act_max_cnt, p->act_max_cnt, &clip);
+        int32_t want = shape ? fx_add_sat(u_q29[i], s->qres_q29[i], st) : u_q29[i];
+        out->bdot_cmd_cnt[i] = fx_to_count(want, 1, p->act_cnt_shift, -p->act_max_cnt, p->act_max_cnt, &clip);
         u_q29[i] = fx_shl_sat(out->bdot_cmd_cnt[i], p->act_cnt_shift, st);
+        s->qres_q29[i] = (shape && (clip == 0u)) ? fx_sub_sat(want, u_q29[i], st) : 0;
     }
 }
 
@@ -569,6 +578,7 @@ fsw_rc_t obs_init(obs_state_t *s, const obs_params_t *p, obs_out_t *out)
     zero_words(s->x_q29, OBS_NX);
     zero_words(s->p_q30, OBS_NZ * OBS_NZ);
     zero_words(s->u_prev_q29, OBS_NU);
+    zero_words(s->qres_q29, OBS_NU);
     zero_words(s->f_q28, OBS_NZ * OBS_NZ);
     zero_words(s->t_q30, OBS_NZ * OBS_NZ);
     zero_words(s->phi_q, OBS_NX * OBS_NX);
@@ -648,7 +658,7 @@ static uint32_t run_filter(obs_state_t *s, const obs_params_t *p, uint32_t mask,
     if (!s->lost) {
         h |= command(s, p, u_q29, st);
     }
-    to_counts(p, u_q29, out, st);
+    to_counts(s, p, u_q29, !s->lost, out, st);
     /* Time update with the command actually applied. */
     h |= predict(s, p, u_q29, st);
     if (p->estimator == OBS_EST_CONST_W) {
@@ -671,18 +681,22 @@ void obs_step(obs_state_t *s, const obs_params_t *p, const obs_in_t *in, obs_out
     out->tlm.e_q29[1] = 0;
     out->tlm.d2_q16[0] = 0;
     out->tlm.d2_q16[1] = 0;
+    s->tlm.revision = p->revision;   /* the table this step ran with (tables swap at run time) */
     h = handle_seq(s, p, in->seq, &mask, &gap_lost, &st);
     if ((mask != OBS_ALL_AXES) && ((h & OBS_H_MEAS_SKIP) == 0u)) {
         h |= OBS_H_MEAS_SKIP;
         fx_cnt_inc(&s->tlm.n_skip);
     }
     if (!s->initialized) {
-        to_counts(p, u_q29, out, &st);   /* zero command */
         if (mask == OBS_ALL_AXES) {
-            /* 3. Initialise on the first complete measurement; it is not used twice. */
+            /* 3. Initialise on the first complete measurement, then steps 4-6 on the same
+               sample (spec 10 §4.4): command from x-hat(0|0). Holding a zero command for this
+               first period lets the 51 rad/s nutation kick the sail (M-paper: peak mu 0.51 deg
+               instead of 0.19, and divergence at the 1.2 deg/s limit). */
             start_estimate(s, p, y_q29, false);
-            h |= predict(s, p, u_q29, &st);
+            h |= run_filter(s, p, mask, y_q29, u_q29, out, &st);
         } else {
+            to_counts(s, p, u_q29, false, out, &st);   /* zero command */
             h |= OBS_H_NOT_INIT;
         }
     } else {

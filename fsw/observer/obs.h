@@ -144,6 +144,7 @@ typedef struct {
     int32_t  kappa_q28;
     int32_t  p_q30[OBS_NZ * OBS_NZ];  /* symmetric, kept exactly symmetric */
     int32_t  u_prev_q29[OBS_NU];      /* command applied over the last period */
+    int32_t  qres_q29[OBS_NU];        /* command quantisation residual carried to the next step */
     /* sequencing and fault state */
     uint32_t last_seq;
     bool     have_seq;

@@ -55,6 +55,7 @@ ObsState from_fixed(const obs_state_t &s)
     ObsState st;
     for (int i = 0; i < 6; ++i) { st.x(i) = dq(s.x_q29[i], 29); }
     st.kappa = dq(s.kappa_q28, 28);
+    for (int i = 0; i < 2; ++i) { st.qres(i) = dq(s.qres_q29[i], 29); }
     for (int i = 0; i < 7; ++i) {
         for (int j = 0; j < 7; ++j) { st.p(i, j) = dq(s.p_q30[i * 7 + j], 30); }
     }
@@ -87,10 +88,15 @@ ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_
         u *= t.bdot_max / mag;
         out.limited = true;
     }
+    // Error-feedback quantisation (obs.c to_counts): the residual a count could not carry is
+    // added to the next command; a clip at the actuator range clears it.
     for (size_t i = 0; i < 2; ++i) {
         const Eigen::Index ii = static_cast<Eigen::Index>(i);
-        out.cmd_cnt[i] = rnd_count(u(ii) / t.act_lsb, t.act_max_cnt);
+        const double want = u(ii) + st.qres(ii);
+        const double c = std::round(want / t.act_lsb);
+        out.cmd_cnt[i] = rnd_count(want / t.act_lsb, t.act_max_cnt);
         u(ii) = out.cmd_cnt[i] * t.act_lsb;
+        st.qres(ii) = (std::fabs(c) > t.act_max_cnt) ? 0.0 : want - u(ii);
     }
     // Time update on the first-order model, linearised at the updated estimate.
     double dk = st.kappa - t.kappa0;

@@ -36,6 +36,7 @@ struct ObsState {
     Eigen::Matrix<double, 6, 1> x;          // rad/s, rad
     double kappa;                           // K / 0.01 s^-2
     Eigen::Matrix<double, 7, 7> p;          // scaled covariance
+    Eigen::Vector2d qres = Eigen::Vector2d::Zero();   // command quantisation residual, rad/s
 };
 
 // The fixed-point state read as real values (for per-step golden comparisons).
