@@ -1,5 +1,9 @@
-# fsw/app: parameter-table machinery (codec, loader, validation). Included by fsw/CMakeLists.txt.
+# fsw/app: tables (codec, loader, validation), the observer table image, the executive and its
+# telemetry encoder. Included by fsw/CMakeLists.txt.
 list(APPEND FSW_SOURCES
   app/fsw_codec.c
   app/fsw_table.c
+  app/fsw_obs_table.c
+  app/fsw_exec.c
+  app/fsw_tlm.c
 )

@@ -1,4 +1,5 @@
-"""python -m tools.observer {design --out DIR | ctable [--check] | truth --out H | check [GROUP ...]} (from the repo root)."""
+"""python -m tools.observer {design --out DIR | ctable [--check] | truth --out H | check [GROUP ...] |
+   image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE | --all DIR)} (from the repo root)."""
 import argparse
 import sys
 
@@ -15,7 +16,18 @@ def main(argv=None):
     u.add_argument("--out", required=True)
     c = sub.add_parser("check", help="run acceptance checks and print measured vs spec")
     c.add_argument("groups", nargs="*", help="s01 s02 s03 flight s06 ranges (default: all)")
+    im = sub.add_parser("image", help="write binary observer-table images (header + payload) of the boot tables")
+    im.add_argument("--table", choices=["obs_50hz_phys", "obs_50hz_paper", "obs_5hz_paper", "obs_paper_printed"])
+    im.add_argument("--all", metavar="DIR", help="write DIR/<name>.bin for all four tables")
+    im.add_argument("-o", metavar="FILE", help="output image (with --table)")
+    im.add_argument("--revision", type=int, default=1, help="header revision (default 1, as the boot tables)")
+    im.add_argument("--set", action="append", metavar="FIELD=INT",
+                    help="override an obs_params_t field with a raw integer before the CRC (repeatable; "
+                         "FIELD[i]=INT for one vector entry, hdr.FIELD=INT for a header word)")
     a = ap.parse_args(argv)
+    if a.cmd == "image":
+        from . import image
+        return image.main(a)
     if a.cmd == "design":
         from . import design
         for pth in design.write(a.out):

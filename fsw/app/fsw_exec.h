@@ -1,0 +1,158 @@
+/*
+ * fsw_exec.h — the executive: fsw_t, fsw_step, modes, health, table upload, telemetry
+ * (spec 00 §3.3). One caller-owned fsw_t holds everything (module states, the active and
+ * candidate tables, mode, counters): a static object in a board image or a bridge member.
+ * Two instances never interact.
+ *
+ * Step order (spec 00 §3.3): step counter → table commit at the step boundary → table scrub →
+ * accept inputs (range + status; invalid channel keeps its last good value and is marked
+ * stale) → mode manager → observer (DETUMBLE only) → actuator counts (safe values outside
+ * DETUMBLE) → health aggregation → telemetry.
+ *
+ * Channel map of this build (observer only; later modules extend the maps):
+ *   sensor counts[0] = gyro y, counts[1] = gyro z  (2^-20 rad/s LSB per the obs table)
+ *   actuator counts[0] = gimbal rate y, counts[1] = gimbal rate z (obs table act_cnt_shift)
+ */
+#ifndef FSW_APP_EXEC_H
+#define FSW_APP_EXEC_H
+
+#include <stdint.h>
+#include <stdbool.h>
+#include "fsw_types.h"
+#include "fsw_table.h"
+#include "obs.h"
+
+#define FSW_IN_MAX   16u   /* sensor channels a frame can carry (sensor_frame_t.counts[16]) */
+#define FSW_ACT_MAX  16u   /* actuator channels (actuator_cmd_t.counts[16]) */
+#define FSW_N_SENS   2u    /* channels this build consumes */
+#define FSW_N_ACT    2u    /* channels this build drives */
+
+/* Per-channel status bits from the plant (sensor_frame_t.STATUS_*). */
+#define FSW_ST_STALE 1u
+#define FSW_ST_SAT   2u
+
+/* Modes. BOOT exists only until the first step; SAFE is left only by command. */
+#define FSW_MODE_BOOT     0u
+#define FSW_MODE_STANDBY  1u
+#define FSW_MODE_DETUMBLE 2u
+#define FSW_MODE_SAFE     3u
+#define FSW_MODE_COUNT    4u
+
+#define FSW_CMD_NONE      0xFFFFFFFFu   /* fsw_in_t.mode_cmd: no mode command this step */
+
+/* Executive health bits 8..19 (bits 0..7: OR of the modules' fx status this step). */
+#define FSW_H_STALE          (0x00000100u)  /* a consumed channel is invalid this step */
+#define FSW_H_STALE_PERSIST  (0x00000200u)  /* a channel invalid for >= stale_max steps */
+#define FSW_H_SAT_PERSIST    (0x00000400u)  /* plant SAT bit on a channel for >= stale_max steps */
+#define FSW_H_SCRUB          (0x00000800u)  /* active table failed its CRC scrub */
+#define FSW_H_SAFE           (0x00001000u)  /* mode is SAFE */
+#define FSW_H_MODE_REJ       (0x00002000u)  /* a mode command was refused this step */
+#define FSW_H_TBL_REJ        (0x00004000u)  /* a table upload was refused since the last step */
+#define FSW_H_TBL_NEW        (0x00008000u)  /* a new table became active at this step */
+#define FSW_H_MODULE         (0x00010000u)  /* a module reports a fault bit (see obs_health) */
+#define FSW_H_NO_TABLE       (0x00020000u)  /* no valid observer table (boot table refused) */
+
+/* Table registry. */
+#define FSW_TBL_ID_OBS       0x0B01u
+#define FSW_TBL_OBS_LAYOUT   1u
+#define FSW_TBL_OBS_PAYLOAD  646u          /* bytes; fsw_obs_table.c documents the layout */
+
+/* Telemetry layout version carried beside the encoded bytes (fsw_tlm_frame_t). */
+#define FSW_TLM_LAYOUT_VERSION  0x00010001u
+#define FSW_TLM_BYTES           192u       /* encoded size of fsw_tlm_t (fsw_tlm_encode) */
+
+typedef struct {
+    uint32_t period_us;      /* control period; every module table must agree */
+    uint16_t stale_max;      /* consecutive invalid steps on a channel before SAFE (>= 1) */
+    uint32_t boot_mode;      /* mode entered after BOOT: STANDBY or DETUMBLE */
+} fsw_cfg_t;
+
+typedef struct {
+    int64_t  utime_us;       /* echoed, never computed with */
+    int64_t  seq;            /* echoed; the observer sees the low 32 bits */
+    uint32_t n_counts;       /* valid entries of counts[] (<= FSW_IN_MAX) */
+    int32_t  counts[FSW_IN_MAX];
+    uint8_t  status[FSW_IN_MAX];   /* FSW_ST_* per channel */
+    uint32_t mode_cmd;       /* FSW_CMD_NONE or a target mode */
+    uint32_t host_missed;    /* host-reported cumulative counters, copied into telemetry */
+    uint32_t host_rejected;
+} fsw_in_t;
+
+typedef struct {
+    int64_t  utime_us;
+    int64_t  seq;
+    uint32_t step;
+    uint32_t mode;
+    uint32_t health;         /* aggregate: executive bits 8..19, fx status 0..7 */
+    uint32_t health_sticky;  /* OR of health since init */
+    uint32_t n_chan_rej;     /* channel samples refused (range or STALE bit), saturating */
+    uint32_t n_stale_steps;  /* steps with at least one invalid consumed channel */
+    uint32_t n_in_bad;       /* frames with n_counts < FSW_N_SENS (all channels invalid) */
+    uint32_t n_tbl_acc;      /* table candidates committed */
+    uint32_t n_tbl_rej;      /* table uploads refused (loader or module veto) */
+    uint32_t tbl_reason;     /* reason word of the latest refusal (fsw_table.h) */
+    uint32_t tbl_revision;   /* active observer table revision */
+    uint32_t n_scrub_err;
+    uint32_t n_safe;         /* SAFE entries */
+    uint32_t n_mode_rej;     /* refused mode commands */
+    uint32_t host_missed;
+    uint32_t host_rejected;
+    int32_t  act_cnt[FSW_N_ACT];
+    uint32_t obs_health;     /* observer health word of this step (0 when not run) */
+    obs_tlm_t obs;           /* observer telemetry (last run) */
+} fsw_tlm_t;
+
+typedef struct {
+    uint32_t n_act;                  /* valid entries of act_cnt[] */
+    int32_t  act_cnt[FSW_ACT_MAX];
+    uint32_t mode;
+    uint32_t health;
+    fsw_tlm_t tlm;
+} fsw_out_t;
+
+typedef struct {
+    fsw_cfg_t    cfg;
+    bool         init_ok;
+    uint32_t     mode;
+    uint32_t     step;
+    /* tables: the loader owns the images; obs_p is the decoded active table */
+    fsw_table_t  obs_tbl;
+    bool         have_obs_p;
+    obs_params_t obs_p;
+    obs_params_t obs_cand;           /* scratch: candidate decoded for its module check */
+    bool         tbl_rej_pending;    /* a refusal since the last step (FSW_H_TBL_REJ) */
+    uint8_t      boot_img[FSW_TABLE_HDR_BYTES + FSW_TBL_OBS_PAYLOAD];   /* boot image staging */
+    /* modules */
+    obs_state_t  obs_s;
+    obs_out_t    obs_o;
+    /* input acceptance */
+    int32_t      last_good[FSW_N_SENS];
+    uint32_t     stale_run[FSW_N_SENS];
+    uint32_t     sat_run[FSW_N_SENS];
+    fsw_tlm_t    tlm;                /* counters live here */
+} fsw_t;
+
+/*
+ * Validates cfg, encodes the boot observer table (boot_obs, e.g. &OBS_TBL_50HZ_PHYS) into an
+ * image and loads it through the same checks as an upload. FSW_ERR_ARG on a bad cfg; a boot
+ * table that fails its checks leaves the executive in BOOT → SAFE with FSW_H_NO_TABLE.
+ */
+fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const obs_params_t *boot_obs, uint32_t revision);
+void     fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out);
+/* One upload chunk, between steps. A completed candidate is decoded and module-checked at
+   once; it becomes active at the next fsw_step. *why gets the loader's reason word. */
+fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why);
+
+/* Encodes t little-endian (FSW_TLM_BYTES; layout in fsw_tlm_formats.json). Returns the
+   bytes written, 0 if cap is too small. */
+uint32_t fsw_tlm_encode(const fsw_tlm_t *t, uint8_t *buf, uint32_t cap);
+
+/* Observer table image (fsw_obs_table.c). */
+extern const fsw_table_desc_t FSW_TBL_DESC_OBS;
+uint32_t fsw_obs_table_encode(const obs_params_t *p, uint32_t revision, uint8_t *img, uint32_t cap);
+/* Decodes in place: on failure *p is partly written and must not be used (callers decode
+   into a scratch struct and copy on success). */
+fsw_rc_t fsw_obs_table_decode(const uint8_t *payload, uint32_t len, uint32_t revision,
+                              obs_params_t *p);
+
+#endif /* FSW_APP_EXEC_H */

@@ -1,0 +1,395 @@
+/*
+ * Executive (spec 00 §3.3): boot, modes and commands, input acceptance (stale/range/SAT),
+ * SAFE rules, table upload (accept, corrupt, module veto) with nothing lost, scrub, telemetry
+ * encoding, determinism and instance independence. Host and target.
+ */
+#include "fsw_exec.h"
+#include "obs_tables.h"
+#include "ut.h"
+
+#define CNT_1DEG_S 18301   /* 1 deg/s in counts of 2^-20 rad/s */
+
+/* Large objects live in static storage: the target runner has a small stack. Test-only state. */
+static fsw_t g_a;
+static fsw_t g_b;
+static fsw_out_t g_oa;
+static fsw_out_t g_ob;
+static uint8_t g_img[FSW_TABLE_CAP_BYTES];
+
+static fsw_cfg_t cfg50(void)
+{
+    fsw_cfg_t c;
+    c.period_us = 20000u;
+    c.stale_max = 50u;
+    c.boot_mode = FSW_MODE_DETUMBLE;
+    return c;
+}
+
+static fsw_in_t frame(int64_t seq, int32_t wy, int32_t wz)
+{
+    fsw_in_t in;
+    uint32_t i;
+    in.utime_us = seq * 20000;
+    in.seq = seq;
+    in.n_counts = 2u;
+    for (i = 0u; i < FSW_IN_MAX; i++) {
+        in.counts[i] = 0;
+        in.status[i] = 0u;
+    }
+    in.counts[0] = wy;
+    in.counts[1] = wz;
+    in.mode_cmd = FSW_CMD_NONE;
+    in.host_missed = 0u;
+    in.host_rejected = 0u;
+    return in;
+}
+
+/* Uploads img[0..n) in chunks of `chunk` bytes; returns the last rc. */
+static fsw_rc_t upload(fsw_t *f, const uint8_t *img, uint32_t n, uint32_t revision, uint32_t chunk,
+                       uint32_t *why)
+{
+    fsw_rc_t rc = FSW_OK;
+    uint32_t off;
+    for (off = 0u; off < n; off += chunk) {
+        fsw_table_chunk_t c;
+        c.table_id = (uint16_t)FSW_TBL_ID_OBS;
+        c.revision = revision;
+        c.total_len = n;
+        c.offset = off;
+        c.n = ((n - off) < chunk) ? (n - off) : chunk;
+        c.data = &img[off];
+        rc = fsw_table_upload(f, &c, why);
+    }
+    return rc;
+}
+
+UT_TEST(boot_tables_encode_load_and_enter_the_boot_mode)
+{
+    const obs_params_t *t[4] = {&OBS_TBL_50HZ_PHYS, &OBS_TBL_50HZ_PAPER, &OBS_TBL_5HZ_PAPER,
+                                &OBS_TBL_PAPER_PRINTED};
+    uint32_t i;
+    for (i = 0u; i < 4u; i++) {
+        fsw_cfg_t c = cfg50();
+        fsw_in_t in = frame(1, 0, 0);
+        c.period_us = t[i]->period_us;
+        UT_CHECK_UEQ(fsw_obs_table_encode(t[i], 7u, g_img, sizeof(g_img)),
+                     FSW_TABLE_HDR_BYTES + FSW_TBL_OBS_PAYLOAD);
+        UT_CHECK_UEQ(fsw_init(&g_a, &c, t[i], 7u), FSW_OK);
+        UT_CHECK_UEQ(g_a.tlm.n_tbl_rej, 0u);
+        /* the decoded table is the C initialiser, field for field */
+        UT_CHECK_UEQ(g_a.obs_p.period_us, t[i]->period_us);
+        UT_CHECK_EQ(g_a.obs_p.phi0[7], t[i]->phi0[7]);
+        UT_CHECK_EQ(g_a.obs_p.w[13], t[i]->w[13]);
+        UT_CHECK_EQ(g_a.obs_p.ls[6], t[i]->ls[6]);
+        UT_CHECK_EQ(g_a.obs_p.sigma, t[i]->sigma);
+        UT_CHECK_UEQ(g_a.obs_p.revision, 7u);
+        fsw_step(&g_a, &in, &g_oa);
+        UT_CHECK_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+        UT_CHECK_UEQ(g_oa.tlm.tbl_revision, 7u);
+    }
+}
+
+UT_TEST(bad_config_and_bad_boot_table_are_refused)
+{
+    fsw_cfg_t c = cfg50();
+    obs_params_t p = OBS_TBL_50HZ_PHYS;
+    fsw_in_t in = frame(1, 0, 0);
+    c.stale_max = 0u;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_ERR_ARG);
+    c = cfg50();
+    c.boot_mode = FSW_MODE_SAFE;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_ERR_ARG);
+    /* table period disagrees with the executive's */
+    c = cfg50();
+    c.period_us = 200000u;
+    UT_TRUE(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u) != FSW_OK);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_EQ(g_oa.act_cnt[0], 0);
+    /* a range failure in the loader: kappa band inverted */
+    c = cfg50();
+    p.kappa_lo_q28 = p.kappa_hi_q28;
+    UT_TRUE(fsw_init(&g_a, &c, &p, 1u) != FSW_OK);
+    UT_UEQ(g_a.tlm.tbl_reason & 0xFFu, FSW_TBL_R_INVARIANT);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_TRUE((g_oa.health & FSW_H_NO_TABLE) != 0u);
+}
+
+UT_TEST(mode_commands_follow_the_transition_rules)
+{
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in;
+    int64_t k = 1;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_TRUE(g_oa.act_cnt[0] != 0);                 /* detumbling: a real command */
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = FSW_MODE_STANDBY;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_STANDBY);
+    UT_EQ(g_oa.act_cnt[0], 0);                     /* safe value outside DETUMBLE */
+    UT_EQ(g_oa.act_cnt[1], 0);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = FSW_MODE_BOOT;                   /* not commandable */
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_STANDBY);
+    UT_TRUE((g_oa.health & FSW_H_MODE_REJ) != 0u);
+    UT_UEQ(g_oa.tlm.n_mode_rej, 1u);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = 99u;                             /* unknown */
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.tlm.n_mode_rej, 2u);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = FSW_MODE_SAFE;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_UEQ(g_oa.tlm.n_safe, 1u);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = FSW_MODE_DETUMBLE;               /* SAFE leaves only to STANDBY */
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_UEQ(g_oa.tlm.n_mode_rej, 3u);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = FSW_MODE_STANDBY;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_STANDBY);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    in.mode_cmd = FSW_MODE_DETUMBLE;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+    in = frame(k++, CNT_1DEG_S, CNT_1DEG_S);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_TRUE(g_oa.act_cnt[0] != 0);                 /* commanding again after re-entry */
+}
+
+UT_TEST(invalid_channels_hold_the_last_good_value_and_are_counted)
+{
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in;
+    int64_t k;
+    uint32_t skip0;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    for (k = 1; k <= 5; k++) {
+        in = frame(k, CNT_1DEG_S, -CNT_1DEG_S);
+        fsw_step(&g_a, &in, &g_oa);
+    }
+    skip0 = g_oa.tlm.obs.n_skip;
+    /* out of range on y: count >= gyro_max_cnt */
+    in = frame(6, OBS_TBL_50HZ_PHYS.gyro_max_cnt, -CNT_1DEG_S);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.tlm.n_chan_rej, 1u);
+    UT_UEQ(g_oa.tlm.n_stale_steps, 1u);
+    UT_TRUE((g_oa.health & FSW_H_STALE) != 0u);
+    UT_EQ(g_a.last_good[0], CNT_1DEG_S);           /* held, never clamped */
+    UT_UEQ(g_oa.tlm.obs.n_skip, skip0 + 1u);       /* the module skipped that axis */
+    /* plant STALE bit on z */
+    in = frame(7, CNT_1DEG_S, -CNT_1DEG_S);
+    in.status[1] = FSW_ST_STALE;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.tlm.n_chan_rej, 2u);
+    UT_UEQ(g_oa.tlm.obs.n_skip, skip0 + 2u);
+    /* short frame: both channels invalid */
+    in = frame(8, CNT_1DEG_S, -CNT_1DEG_S);
+    in.n_counts = 1u;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.tlm.n_in_bad, 1u);
+    UT_UEQ(g_oa.tlm.n_chan_rej, 3u);
+    /* recovery: a clean frame clears the step flag */
+    in = frame(9, CNT_1DEG_S, -CNT_1DEG_S);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_TRUE((g_oa.health & FSW_H_STALE) == 0u);
+    UT_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+    UT_TRUE((g_oa.tlm.health_sticky & FSW_H_STALE) != 0u);
+}
+
+UT_TEST(persistent_stale_and_sat_go_to_safe_with_zero_command)
+{
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in;
+    int64_t k;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    for (k = 1; k < 50; k++) {
+        in = frame(k, CNT_1DEG_S, CNT_1DEG_S);
+        in.status[0] = FSW_ST_STALE;
+        fsw_step(&g_a, &in, &g_oa);
+        UT_CHECK_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);   /* 49 stale steps: not yet */
+    }
+    in = frame(50, CNT_1DEG_S, CNT_1DEG_S);
+    in.status[0] = FSW_ST_STALE;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_TRUE((g_oa.health & FSW_H_STALE_PERSIST) != 0u);
+    UT_EQ(g_oa.act_cnt[0], 0);
+    UT_EQ(g_oa.act_cnt[1], 0);
+    /* stays SAFE once the input is good again (left only by command) */
+    in = frame(51, CNT_1DEG_S, CNT_1DEG_S);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    for (k = 1; k <= 50; k++) {
+        in = frame(k, CNT_1DEG_S, CNT_1DEG_S);
+        in.status[1] = FSW_ST_SAT;
+        fsw_step(&g_a, &in, &g_oa);
+    }
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_TRUE((g_oa.health & FSW_H_SAT_PERSIST) != 0u);
+}
+
+/* Runs a and b on the same inputs; b gets `img` uploaded between steps 20 and 21. */
+static void run_pair_with_upload(const uint8_t *img, uint32_t n, uint32_t rev, fsw_rc_t *rc,
+                                 uint32_t *why)
+{
+    fsw_cfg_t c = cfg50();
+    int64_t k;
+    (void)fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u);
+    (void)fsw_init(&g_b, &c, &OBS_TBL_50HZ_PHYS, 1u);
+    for (k = 1; k <= 40; k++) {
+        fsw_in_t in = frame(k, CNT_1DEG_S + (int32_t)(k * 37), -CNT_1DEG_S);
+        if (k == 21) {
+            *rc = upload(&g_b, img, n, rev, 100u, why);
+        }
+        fsw_step(&g_a, &in, &g_oa);
+        fsw_step(&g_b, &in, &g_ob);
+    }
+}
+
+UT_TEST(table_upload_accepted_at_the_step_boundary)
+{
+    obs_params_t p = OBS_TBL_50HZ_PHYS;
+    uint32_t n;
+    uint32_t why = 0u;
+    fsw_rc_t rc = FSW_ERR_ARG;
+    p.bdot_max_q29 = p.bdot_max_q29 / 2;     /* a real change: a lower command limit */
+    n = fsw_obs_table_encode(&p, 2u, g_img, sizeof(g_img));
+    run_pair_with_upload(g_img, n, 2u, &rc, &why);
+    UT_UEQ(rc, FSW_OK);
+    UT_UEQ(why, 0u);
+    UT_UEQ(g_ob.tlm.tbl_revision, 2u);
+    UT_UEQ(g_ob.tlm.n_tbl_acc, 1u);
+    UT_UEQ(g_ob.tlm.n_tbl_rej, 0u);
+    UT_UEQ(g_ob.tlm.obs.revision, 2u);
+    UT_EQ(g_b.obs_p.bdot_max_q29, p.bdot_max_q29);
+    UT_TRUE((g_ob.tlm.health_sticky & FSW_H_TBL_NEW) != 0u);
+    UT_UEQ(g_oa.tlm.tbl_revision, 1u);
+}
+
+UT_TEST(corrupt_or_vetoed_tables_are_refused_and_nothing_is_lost)
+{
+    obs_params_t p = OBS_TBL_50HZ_PHYS;
+    uint32_t n;
+    uint32_t why = 0u;
+    fsw_rc_t rc = FSW_OK;
+    /* 1. CRC: one payload bit flipped after encoding */
+    n = fsw_obs_table_encode(&OBS_TBL_50HZ_PHYS, 3u, g_img, sizeof(g_img));
+    g_img[FSW_TABLE_HDR_BYTES + 200u] ^= 0x10u;
+    run_pair_with_upload(g_img, n, 3u, &rc, &why);
+    UT_UEQ(rc, FSW_ERR_CRC);
+    UT_UEQ(why & 0xFFu, FSW_TBL_R_CRC);
+    UT_UEQ(g_ob.tlm.n_tbl_rej, 1u);
+    UT_UEQ(g_ob.tlm.tbl_reason & 0xFFu, FSW_TBL_R_CRC);
+    UT_UEQ(g_ob.tlm.tbl_revision, 1u);
+    UT_TRUE((g_ob.tlm.health_sticky & FSW_H_TBL_REJ) != 0u);
+    /* nothing lost: the refused upload changed no command and no estimate */
+    UT_EQ(g_ob.act_cnt[0], g_oa.act_cnt[0]);
+    UT_EQ(g_ob.act_cnt[1], g_oa.act_cnt[1]);
+    UT_EQ(g_ob.tlm.obs.kappa_q28, g_oa.tlm.obs.kappa_q28);
+    UT_EQ(g_ob.tlm.obs.x_q29[0], g_oa.tlm.obs.x_q29[0]);
+    /* 2. module veto: valid CRC and ranges, but a period the executive does not run */
+    p.period_us = 10000u;
+    n = fsw_obs_table_encode(&p, 4u, g_img, sizeof(g_img));
+    run_pair_with_upload(g_img, n, 4u, &rc, &why);
+    UT_UEQ(why & 0xFFu, FSW_TBL_R_MODULE);
+    UT_UEQ(g_ob.tlm.tbl_revision, 1u);
+    UT_EQ(g_ob.act_cnt[0], g_oa.act_cnt[0]);
+    /* 3. loader range: n_lost = 0 */
+    p = OBS_TBL_50HZ_PHYS;
+    p.n_lost = 0u;
+    n = fsw_obs_table_encode(&p, 5u, g_img, sizeof(g_img));
+    run_pair_with_upload(g_img, n, 5u, &rc, &why);
+    UT_UEQ(why & 0xFFu, FSW_TBL_R_RANGE_LO);
+    UT_UEQ((why >> FSW_TBL_DETAIL_SHIFT) & 0xFFu, 16u);   /* field index of n_lost */
+    UT_UEQ(g_ob.tlm.n_tbl_rej, 1u);
+    UT_EQ(g_ob.tlm.obs.kappa_q28, g_oa.tlm.obs.kappa_q28);
+}
+
+UT_TEST(scrub_failure_goes_to_safe)
+{
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in = frame(1, 0, 0);
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+    g_a.obs_tbl.img[g_a.obs_tbl.active][FSW_TABLE_HDR_BYTES + 10u] ^= 1u;   /* memory upset */
+    in = frame(2, 0, 0);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_TRUE((g_oa.health & FSW_H_SCRUB) != 0u);
+    UT_UEQ(g_oa.tlm.n_scrub_err, 1u);
+}
+
+UT_TEST(telemetry_encodes_to_its_fixed_size)
+{
+    uint8_t buf[FSW_TLM_BYTES];
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in = frame(0x0102030405LL, 5, 6);
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, FSW_TLM_BYTES), FSW_TLM_BYTES);
+    UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, FSW_TLM_BYTES - 1u), 0u);
+    /* seq is the second little-endian i64 */
+    UT_UEQ(buf[8], 0x05u);
+    UT_UEQ(buf[12], 0x01u);
+    UT_UEQ(buf[16], 1u);                           /* step 1 */
+}
+
+UT_TEST(deterministic_and_instances_independent)
+{
+    fsw_cfg_t c = cfg50();
+    uint8_t ba[FSW_TLM_BYTES];
+    uint8_t bb[FSW_TLM_BYTES];
+    int64_t k;
+    uint32_t i;
+    uint32_t diff = 0u;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    UT_UEQ(fsw_init(&g_b, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    for (k = 1; k <= 200; k++) {
+        fsw_in_t in = frame(k, CNT_1DEG_S - (int32_t)(k * 53), CNT_1DEG_S + (int32_t)(k * 11));
+        fsw_in_t other = frame(k, -3 * CNT_1DEG_S, 2 * CNT_1DEG_S);
+        fsw_step(&g_a, &in, &g_oa);
+        fsw_step(&g_b, &other, &g_ob);   /* interleaved, different data */
+    }
+    (void)fsw_tlm_encode(&g_oa.tlm, ba, FSW_TLM_BYTES);
+    UT_UEQ(fsw_init(&g_b, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_OK);
+    for (k = 1; k <= 200; k++) {
+        fsw_in_t in = frame(k, CNT_1DEG_S - (int32_t)(k * 53), CNT_1DEG_S + (int32_t)(k * 11));
+        fsw_step(&g_b, &in, &g_ob);
+    }
+    (void)fsw_tlm_encode(&g_ob.tlm, bb, FSW_TLM_BYTES);
+    for (i = 0u; i < FSW_TLM_BYTES; i++) {
+        diff += (ba[i] != bb[i]) ? 1u : 0u;
+    }
+    UT_UEQ(diff, 0u);
+}
+
+int main(void)
+{
+    UT_CASES(cases) = {
+        UT_CASE(boot_tables_encode_load_and_enter_the_boot_mode),
+        UT_CASE(bad_config_and_bad_boot_table_are_refused),
+        UT_CASE(mode_commands_follow_the_transition_rules),
+        UT_CASE(invalid_channels_hold_the_last_good_value_and_are_counted),
+        UT_CASE(persistent_stale_and_sat_go_to_safe_with_zero_command),
+        UT_CASE(table_upload_accepted_at_the_step_boundary),
+        UT_CASE(corrupt_or_vetoed_tables_are_refused_and_nothing_is_lost),
+        UT_CASE(scrub_failure_goes_to_safe),
+        UT_CASE(telemetry_encodes_to_its_fixed_size),
+        UT_CASE(deterministic_and_instances_independent),
+    };
+    return UT_RUN("fsw_exec", cases);
+}

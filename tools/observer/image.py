@@ -1,0 +1,230 @@
+"""Binary observer-table images from the design tool: an independent oracle for the flight decoder.
+
+    python -m tools.observer image --table NAME [--revision N] [--set FIELD=INT ...] -o FILE
+    python -m tools.observer image --all DIR [--revision N]
+
+The integers are the ones `ctable` writes into the C boot tables (fsw/observer/obs_tables.c):
+`params()` takes them from ctable's own computation (its constants, q_int and design tables,
+as table_c does) and cross-checks every field against the initialiser text table_c renders.
+They are packed here with Python struct, independently of the C encoder, in the wire layout
+documented in fsw/app/fsw_obs_table.c (spec 00 §3.2, 10-observer §4.6):
+
+    header  <HHIII  table_id 0x0B01, layout_version 1, payload length 646, revision,
+                    zlib.crc32(payload)
+    payload 646 bytes, little-endian, field by field (PAYLOAD below)
+
+`--set FIELD=INT` replaces one field by its obs_params_t name with a raw integer before the CRC
+(`FIELD[i]=INT` for one entry of a vector/matrix). Header pseudo-fields `hdr.table_id`,
+`hdr.layout_version`, `hdr.length`, `hdr.revision` and `hdr.crc` replace header words after the
+CRC is computed (for tests of the loader's header/CRC checks).
+"""
+import os
+import re
+import struct
+import zlib
+
+from . import ctable
+from . import design as dz
+
+TABLE_ID = 0x0B01
+LAYOUT_VERSION = 1
+PAYLOAD_BYTES = 646
+HDR = struct.Struct("<HHIII")
+NX, NZ, NU, NY = 6, 7, 2, 2
+EST = {"OBS_EST_EKF": 0, "OBS_EST_CONST_W": 2}
+
+# (obs_params_t field, struct code, count) in wire order (fsw/app/fsw_obs_table.c header comment)
+PAYLOAD = [
+    ("period_us", "I", 1), ("estimator", "B", 1), ("gyro_cnt_shift", "B", 1), ("act_cnt_shift", "B", 1),
+    ("d2_reject", "B", 1), ("sigma", "i", 1), ("gyro_max_cnt", "i", 1), ("act_max_cnt", "i", 1),
+    ("bdot_max_q29", "i", 1), ("bdot_hw_q29", "i", 1),
+    ("q_phi0", "B", 1), ("q_phik", "B", 1), ("q_gam0", "B", 1), ("q_gamk", "B", 1), ("q_d", "B", 1), ("q_w", "B", 1),
+    ("n_lost", "H", 1), ("n_good", "H", 1), ("n_sat", "H", 1), ("n_gap_max", "H", 1),
+    ("kappa0_q28", "i", 1), ("kappa_init_q28", "i", 1), ("kappa_lo_q28", "i", 1), ("kappa_hi_q28", "i", 1),
+    ("r_q30", "i", 1), ("p_floor_q30", "i", 1), ("p_ceil_q30", "i", 1), ("d2_max_q16", "i", 1),
+    ("ls", "i", NZ), ("p0_q30", "i", NZ), ("qd_q30", "i", NZ),
+    ("phi0", "i", NX * NX), ("phik", "i", NX * NX), ("gam0", "i", NX * NU), ("gamk", "i", NX * NU),
+    ("d", "i", NU * NX), ("w", "i", NZ * NY),
+]
+PAYLOAD_STRUCT = struct.Struct("<" + "".join("%d%s" % (n, c) for _, c, n in PAYLOAD))
+assert PAYLOAD_STRUCT.size == PAYLOAD_BYTES, PAYLOAD_STRUCT.size
+FIELDS = {f: (c, n) for f, c, n in PAYLOAD}
+NAMES = [name for name, _ in ctable.TABLES]
+HDR_FIELDS = ("table_id", "layout_version", "length", "revision", "crc")
+
+_TABS = None
+
+
+def _tables():
+    global _TABS
+    if _TABS is None:
+        _TABS = {k: dz._clean(v) for k, v in dz.all_tables().items()}   # as ctable.render does
+    return _TABS
+
+
+def _from_design(tab):
+    """The integers of ctable.table_c, from the same constants and helpers."""
+    mat, ekf = tab["matrices"], tab["ekf"]
+    p = {
+        "period_us": int(tab["period_us"]),
+        "estimator": EST["OBS_EST_EKF" if tab["estimator"] == "EKF" else "OBS_EST_CONST_W"],
+        "sigma": int(tab["sigma"]),
+        "gyro_cnt_shift": ctable.X_Q + ctable.GYRO_LSB_LOG2,
+        "act_cnt_shift": ctable.X_Q + ctable.ACT_LSB_LOG2,
+        "gyro_max_cnt": ctable.GYRO_MAX_CNT,
+        "act_max_cnt": int(ctable.BDOT_HW * 2.0 ** -ctable.ACT_LSB_LOG2),
+        "bdot_max_q29": ctable.q_int(ctable.BDOT_MAX, ctable.X_Q),
+        "bdot_hw_q29": ctable.q_int(ctable.BDOT_HW, ctable.X_Q),
+    }
+    for field, key in (("phi0", "Phi0"), ("phik", "Phi_kappa"), ("gam0", "Gam0"), ("gamk", "Gam_kappa"),
+                       ("d", "D"), ("w", "W")):
+        p[field] = [int(v) for row in mat[key]["int32"] for v in row]
+        p["q_" + field] = int(mat[key]["q"])
+    p["kappa0_q28"] = ctable.q_int(tab["kappa0"], ctable.KAPPA_Q)
+    p["kappa_init_q28"] = ctable.q_int(tab["kappa_init"], ctable.KAPPA_Q)
+    p["kappa_lo_q28"] = ctable.q_int(tab["kappa_band"][0], ctable.KAPPA_Q)
+    p["kappa_hi_q28"] = ctable.q_int(tab["kappa_band"][1], ctable.KAPPA_Q)
+    if ekf is None:   # neutral CONST_W covariance fields, as table_c writes them
+        p["ls"], p["p0_q30"], p["qd_q30"], p["r_q30"] = [-13, -13, -10, -10, -10, -10, -1], [1 << 20] * 7, [4] * 7, 1 << 20
+    else:
+        p["ls"] = [int(v) for v in ekf["S_log2"]]
+        p["p0_q30"] = [int(v) for v in ekf["P0_scaled_int32"]]
+        p["qd_q30"] = [int(v) for v in ekf["Q_scaled_int32"]]
+        p["r_q30"] = int(ekf["R_scaled_int32"][0])
+    p["p_floor_q30"] = ctable.P_FLOOR
+    p["p_ceil_q30"] = ctable.q_int(ctable.P_CEIL, ctable.P_Q)
+    for k in ("n_lost", "n_good", "n_sat", "n_gap_max"):
+        p[k] = int(ctable.FAULT[k])
+    p["d2_max_q16"] = ctable.q_int(ctable.FAULT["d2_max"], ctable.D2_Q)
+    p["d2_reject"] = int(ctable.FAULT["d2_reject"])
+    return p
+
+
+def parse_initialiser(text):
+    """{field: int or [int]} from one obs_params_t C initialiser (as table_c / obs_tables.c write it)."""
+    text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
+    text = text[text.index("{") + 1:text.rindex("}")]
+
+    def val(s):
+        s = s.strip()
+        if s in EST:
+            return EST[s]
+        m = re.fullmatch(r"INT32_C\((-?\d+)\)|(-?\d+)u?", s)
+        if m is None:
+            raise ValueError("cannot parse initialiser value %r" % s)
+        return int(m.group(1) or m.group(2))
+
+    out = {}
+    for m in re.finditer(r"\.(\w+)\s*=\s*(\{[^}]*\}|[^,]+)", text):
+        v = m.group(2).strip()
+        out[m.group(1)] = [val(x) for x in v[1:-1].split(",") if x.strip()] if v.startswith("{") else val(v)
+    return out
+
+
+def params(name):
+    """Raw integer fields of boot table NAME, checked against ctable's rendered initialiser."""
+    if name not in NAMES:
+        raise SystemExit("image: unknown table %r; choose from %s" % (name, ", ".join(NAMES)))
+    tab = _tables()[name]
+    p = _from_design(tab)
+    c_init = parse_initialiser(ctable.table_c(name, dict(ctable.TABLES)[name], tab))
+    c_init.pop("revision", None)
+    if set(c_init) != set(FIELDS) or any(c_init[k] != p[k] for k in FIELDS):
+        bad = sorted(k for k in set(c_init) | set(FIELDS) if c_init.get(k) != p.get(k))
+        raise AssertionError("image: %s differs from ctable's initialiser in %s" % (name, bad))
+    return p
+
+
+def _apply(p, hdr, sets):
+    for s in sets or ():
+        m = re.fullmatch(r"\s*([\w.]+)(?:\[(\d+)\])?\s*=\s*(-?(?:0[xX][0-9a-fA-F]+|\d+))\s*", s)
+        if m is None:
+            raise SystemExit("image: --set %r: expected FIELD=INT or FIELD[i]=INT" % s)
+        f, idx, v = m.group(1), m.group(2), int(m.group(3), 0)
+        if f == "revision":   # obs_params_t.revision travels in the header, not the payload
+            f = "hdr.revision"
+        if f.startswith("hdr."):
+            if f[4:] not in HDR_FIELDS or idx is not None:
+                raise SystemExit("image: --set %r: header fields are %s" % (s, ", ".join("hdr." + h for h in HDR_FIELDS)))
+            hdr[f[4:]] = v
+            continue
+        if f not in FIELDS:
+            raise SystemExit("image: --set %r: no field %r; fields: %s" % (s, f, ", ".join(FIELDS)))
+        n = FIELDS[f][1]
+        if idx is None:
+            if n != 1:
+                raise SystemExit("image: --set %r: %s has %d entries; use %s[i]=INT" % (s, f, n, f))
+            p[f] = v
+        else:
+            i = int(idx)
+            if n == 1 or i >= n:
+                raise SystemExit("image: --set %r: index out of range for %s (%d entries)" % (s, f, n))
+            p[f] = list(p[f])
+            p[f][i] = v
+
+
+def pack_payload(p):
+    flat = []
+    for f, c, n in PAYLOAD:
+        v = p[f]
+        flat += (list(v) if n > 1 else [v])
+    try:
+        return PAYLOAD_STRUCT.pack(*flat)
+    except struct.error as e:
+        raise SystemExit("image: a field value does not fit its wire type: %s" % e)
+
+
+def build(name, revision=1, sets=None):
+    """Complete image (header + payload) of boot table NAME."""
+    p = params(name)
+    hdr_over = {}
+    _apply(p, hdr_over, sets)
+    pl = pack_payload(p)
+    hdr = {"table_id": TABLE_ID, "layout_version": LAYOUT_VERSION, "length": len(pl), "revision": revision,
+           "crc": zlib.crc32(pl) & 0xFFFFFFFF}
+    hdr.update(hdr_over)
+    try:
+        head = HDR.pack(*(hdr[k] for k in HDR_FIELDS))
+    except struct.error as e:
+        raise SystemExit("image: a header value does not fit its wire type: %s" % e)
+    return head + pl
+
+
+def decode(img):
+    """(header dict, params dict) of an image, with Python struct only; raises ValueError if malformed."""
+    if len(img) < HDR.size:
+        raise ValueError("image shorter than its %d-byte header" % HDR.size)
+    hdr = dict(zip(HDR_FIELDS, HDR.unpack_from(img)))
+    pl = img[HDR.size:]
+    if hdr["length"] != len(pl) or len(pl) != PAYLOAD_BYTES:
+        raise ValueError("payload is %d bytes, header says %d, layout %d" % (len(pl), hdr["length"], PAYLOAD_BYTES))
+    hdr["crc_ok"] = (zlib.crc32(pl) & 0xFFFFFFFF) == hdr["crc"]
+    vals = list(PAYLOAD_STRUCT.unpack(pl))
+    p = {}
+    for f, c, n in PAYLOAD:
+        p[f] = vals[:n] if n > 1 else vals[0]
+        del vals[:n]
+    return hdr, p
+
+
+def main(args):
+    if bool(args.all) == bool(args.table):
+        raise SystemExit("image: give exactly one of --table NAME (with -o FILE) or --all DIR")
+    if args.all:
+        if args.set:
+            raise SystemExit("image: --set applies to one --table, not --all")
+        os.makedirs(args.all, exist_ok=True)
+        jobs = [(n, os.path.join(args.all, n + ".bin")) for n in NAMES]
+    else:
+        if not args.o:
+            raise SystemExit("image: --table needs -o FILE")
+        jobs = [(args.table, args.o)]
+    for name, path in jobs:
+        img = build(name, args.revision, args.set)
+        with open(path, "wb") as fh:
+            fh.write(img)
+        hdr, _ = decode(img)
+        print("%s: %s, %d bytes, table_id 0x%04X layout %d length %d revision %d crc 0x%08X%s"
+              % (path, name, len(img), hdr["table_id"], hdr["layout_version"], hdr["length"], hdr["revision"],
+                 hdr["crc"], "" if hdr["crc_ok"] else " (CRC overridden: does not match the payload)"))
+    return 0
