@@ -1,20 +1,42 @@
 #!/usr/bin/env bash
-# README command 1: the main job — a SIL scenario over LCM with plots and a summary.
-# The SIL backbone (plant simulator, bridge, observer scenario) is the subject of issue #3 and
-# has not landed yet. Until it does, this command installs and builds everything and runs the
-# part of the product that exists: the fixed-point core's measured accuracy and target
-# equivalence, then says plainly that no SIL scenario is available.
+# README command 1: the main job. Installs what is missing, builds the host tools, and runs a SIL
+# scenario as separate processes over udpm LCM on loopback (logger, bridge with the fixed-point
+# flight code, plant), then writes the summary and the plots.
+#
+#   tools/run.sh [SCENARIO.yaml ...]     default: sim/scenarios/s0-7_nominal_mphys.yaml
+#
+# Output per scenario: build/run/<scenario file name>/ with run.lcmlog (replay: lcm-logplayer),
+# summary.txt, summary.json and the PNG plots. Environment: SIL_PORT (default 7667),
+# FSW_RUN_JOBS (build parallelism, default nproc).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 bash tools/bootstrap.sh
-cmake --preset host >/dev/null
-cmake --build --preset host
-echo "=== fixed-point core accuracy (host sweeps against exact oracles)"
-ctest --preset host -R 'sweep_host' --output-on-failure -V 2>&1 | grep -E '^[0-9]+: fx_|tests passed' || true
-cat <<'MSG'
 
-No SIL scenario yet: the plant simulator, LCM bridge and the sail-detumbling scenario arrive
-with issue #3 (SIL backbone and adaptive observer). This command will then run them and write
-the plots and summary. Today it has built the flight library and shown the fx core accuracy.
-MSG
+scenarios=("$@")
+if ((${#scenarios[@]} == 0)); then
+    scenarios=(sim/scenarios/s0-7_nominal_mphys.yaml)
+fi
+
+echo "=== build (host preset: the SIL executable and the LCM Python bindings)"
+cmake --preset host >/dev/null
+cmake --build --preset host -j "${FSW_RUN_JOBS:-$(nproc)}" --target sil gnc_lcmtypes_gen
+
+port=${SIL_PORT:-7667}
+py="$ROOT/.venv/bin/python"
+for scn in "${scenarios[@]}"; do
+    name=$(basename "$scn" .yaml)
+    out="build/run/$name"
+    echo "=== SIL $name over udpm (port $port): logger, bridge + fixed-point flight code, plant"
+    t0=$(date +%s%N)
+    tools/sil/run_udpm.sh "$scn" "$out" "$port" build/host/hil_host/sil/sil
+    ms=$(( ($(date +%s%N) - t0) / 1000000 ))
+    steps=$(sed -n 's/^plant_steps = //p' "$out/plant_summary.txt")
+    echo "    $steps lock-step steps in $((ms / 1000)).$(printf '%03d' $((ms % 1000))) s wall clock" \
+         "($(( steps * 1000 / (ms > 0 ? ms : 1) )) steps/s, process start-up included)"
+    echo "=== report: $out"
+    "$py" -m tools.sil report "$out/run.lcmlog" --out "$out" \
+        --lcm-py build/host/lcmtypes/python
+    port=$((port + 1))
+done
+echo "=== done: summaries and plots in build/run/"

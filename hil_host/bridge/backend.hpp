@@ -32,6 +32,12 @@ public:
     // the bridge then publishes nothing and does not advance its gate.
     virtual bool step(const Frame &f, StepOutput &out) = 0;
     virtual const char *name() const = 0;
+    // Host counters the flight software reports in its telemetry (missed, rejected); called by
+    // the bridge before every step. Default: not reported.
+    virtual void host_counters(const Counters &) {}
+    // One table-upload chunk, between steps. false: this backend takes no uploads (the bridge
+    // then acks REJECTED itself). ack.result is the loader's verdict.
+    virtual bool table_chunk(const TableChunk &, TableAck &) { return false; }
 };
 
 }  // namespace bridge

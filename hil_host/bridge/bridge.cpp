@@ -13,6 +13,11 @@ Reply Bridge::on_frame(const Frame &in)
         return r;
     }
     const GateAction a = gate_.classify(in.seq);
+    if ((a == GateAction::Gap) && (in.seq - gate_.last() > kMaxSeqJump)) {
+        sat_inc(counters_.malformed);
+        r.outcome = Outcome::Malformed;
+        return r;
+    }
     if ((a == GateAction::Duplicate) || (a == GateAction::Stale)) {
         const Command *c = gate_.answer(a, counters_);
         r.outcome = (a == GateAction::Duplicate) ? Outcome::Duplicate : Outcome::Stale;
@@ -24,6 +29,7 @@ Reply Bridge::on_frame(const Frame &in)
     }
     Frame f = in;
     (void)val_.apply_ranges(f, counters_);
+    be_.host_counters(counters_);
     StepOutput so{};
     if (!be_.step(f, so)) {
         r.outcome = Outcome::BackendFailed;
@@ -54,6 +60,22 @@ Reply Bridge::on_frame(const Frame &in)
     }
     r.tlm.counters = counters_;
     return r;
+}
+
+TableAck Bridge::on_table(const TableChunk &c)
+{
+    TableAck a{};
+    if (!be_.table_chunk(c, a)) {
+        a = TableAck{};
+        a.table_id = c.table_id;
+        a.revision = c.revision;
+        a.result = kTableRejected;
+    }
+    a.utime = c.utime;
+    if (a.result == kTableRejected) {
+        sat_inc(counters_.table_rej);
+    }
+    return a;
 }
 
 Reply Bridge::on_bytes(const std::uint8_t *buf, std::size_t len)

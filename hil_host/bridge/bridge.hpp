@@ -4,6 +4,9 @@
 // then publishes reply.cmd when reply.publish_cmd and reply.tlm when reply.publish_tlm.
 //
 //   decode fails / header malformed  -> malformed++, nothing published, gate unchanged
+//   seq beyond last + kMaxSeqJump    -> malformed++ (implausible: a corrupted seq would otherwise
+//                                       put "last" in the future and make every later frame
+//                                       stale, i.e. lock the loop out for good)
 //   Stale                            -> stale++, nothing published
 //   Duplicate                        -> dups++, cached command re-published (no telemetry)
 //   Step / Gap                       -> ranges checked (last good + STALE bit), backend step,
@@ -32,6 +35,11 @@ struct Reply {
     Telemetry tlm{};
 };
 
+// Largest forward seq jump taken as a gap. LCM frames carry no CRC, so a bit flip in seq is
+// only detectable as implausible; 1000 frames is 100x the observer's n_gap_max and 20 s at
+// 50 Hz, beyond which the flight code treats the measurements as lost anyway.
+constexpr std::int64_t kMaxSeqJump = 1000;
+
 class Bridge {
 public:
     Bridge(Backend &be, const SensorLimits &lim, std::int64_t first_seq = 0)
@@ -39,6 +47,8 @@ public:
 
     Reply on_frame(const Frame &f);
     Reply on_bytes(const std::uint8_t *buf, std::size_t len);   // encoded gnc::sensor_frame_t
+    // One table chunk: forwarded to the backend between steps; table_rej counts refusals.
+    TableAck on_table(const TableChunk &c);
     // The plant's missed-command count (from its heartbeat/summary); stored as reported.
     void set_missed(std::int32_t n) { counters_.missed = (n < 0) ? 0 : n; }
     // For SiAdapter users: fold adapter counters (nonfinite_rej, range_rej, malformed) in.

@@ -40,6 +40,32 @@ struct Command {
     std::uint32_t fsw_health = 0;   // carried as int32 bits on the wire
 };
 
+constexpr std::size_t kMaxChunk = 256;   // table_upload_t data[256]
+constexpr std::int32_t kTableAccepted = 0;   // table_ack_t RESULT_*
+constexpr std::int32_t kTablePartial = 1;
+constexpr std::int32_t kTableRejected = 2;
+
+// Tools -> bridge: one table_upload_t chunk (data points into the decoded message).
+struct TableChunk {
+    std::int64_t utime = 0;
+    std::int32_t table_id = 0;
+    std::int32_t revision = 0;
+    std::int32_t total_len = 0;
+    std::int32_t offset = 0;
+    std::int16_t n = 0;
+    const std::uint8_t *data = nullptr;
+};
+
+// Bridge -> tools: table_ack_t.
+struct TableAck {
+    std::int64_t utime = 0;
+    std::int32_t table_id = 0;
+    std::int32_t revision = 0;
+    std::int32_t result = kTableRejected;
+    std::int32_t reason = 0;
+    std::int32_t bytes_received = 0;
+};
+
 // Cumulative bridge counters; every one saturates at INT32_MAX (fsw_tlm_frame_t comment).
 struct Counters {
     std::int32_t stepped = 0;        // backend steps (seq == last+1 or a gap)
@@ -51,7 +77,7 @@ struct Counters {
     std::int32_t range_rej = 0;      // channel values outside the sensor-table limits
     std::int32_t malformed = 0;      // frames refused whole: undecodable, n_counts/period/seq bad
     std::int32_t missed = 0;         // missed commands reported by the plant
-    std::int32_t table_rej = 0;      // table uploads refused (not produced by this core yet)
+    std::int32_t table_rej = 0;      // table uploads refused (loader, module veto, or no uploads)
 };
 
 // Bridge -> logger: telemetry of step k plus the counters.

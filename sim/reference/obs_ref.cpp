@@ -62,7 +62,21 @@ ObsState from_fixed(const obs_state_t &s)
     return st;
 }
 
-ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt)
+ObsState initial_state(const obs_params_t &p, const std::array<int32_t, 2> &y_cnt)
+{
+    const double lsb = std::ldexp(1.0, static_cast<int>(p.gyro_cnt_shift) - 29);
+    ObsState st;
+    st.x.setZero();
+    st.x(0) = y_cnt[0] * lsb;
+    st.x(1) = y_cnt[1] * lsb;
+    st.kappa = dq(p.kappa_init_q28, 28);
+    st.p.setZero();
+    for (int i = 0; i < 7; ++i) { st.p(i, i) = dq(p.p0_q30[i], 30); }
+    st.qres.setZero();
+    return st;
+}
+
+ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt, bool per_axis_clip)
 {
     ObsStepOut out{{0, 0}, false, Eigen::Matrix<double, 7, 2>::Zero(), Eigen::Matrix<double, 7, 7>::Zero(),
                    Eigen::Matrix<double, 6, 2>::Zero()};
@@ -85,7 +99,11 @@ ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_
     Eigen::Vector2d u = -t.d * st.x;
     double mag = u.cwiseAbs().maxCoeff();
     if (mag > t.bdot_max) {
-        u *= t.bdot_max / mag;
+        if (per_axis_clip) {
+            u = u.cwiseMax(-t.bdot_max).cwiseMin(t.bdot_max);
+        } else {
+            u *= t.bdot_max / mag;
+        }
         out.limited = true;
     }
     // Error-feedback quantisation (obs.c to_counts): the residual a count could not carry is

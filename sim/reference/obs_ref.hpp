@@ -52,6 +52,13 @@ struct ObsStepOut {
 };
 
 // One nominal EKF step from state st with gyro counts y_cnt: update, command, predict.
-ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt);
+// per_axis_clip (analysis only, never flight): clip each command axis to bdot_max instead of
+// scaling the vector, to show why the flight code limits the vector (spec 10 S0-9).
+ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt,
+                        bool per_axis_clip = false);
+
+// The state the flight code starts from on its first complete sample (obs.c start_estimate):
+// x = (y, 0, 0, 0, 0), kappa = kappa_init, P = P0 (scaled), no quantisation residual.
+ObsState initial_state(const obs_params_t &p, const std::array<int32_t, 2> &y_cnt);
 
 }  // namespace ref

@@ -144,7 +144,8 @@ Scenario parse_root(const YAML::Node &root, const Reader &r)
     }
     r.check_keys(root, "",
                  {"name", "plant", "model", "sigma", "k2_true_per_s2", "j_factor", "period_us", "duration_s",
-                  "w0_degps", "mu0_deg", "mudot0_degps", "propagator", "ode_substeps", "gyro", "gimbal", "limits"});
+                  "w0_degps", "mu0_deg", "mudot0_degps", "propagator", "ode_substeps", "gyro", "gimbal", "limits",
+                  "fsw", "faults", "lockstep"});
 
     // Required keys: the identity of the run (spec 10 §2.2: every scenario names its sigma).
     for (const char *k : {"name", "model", "sigma", "duration_s"}) {
@@ -247,6 +248,63 @@ Scenario parse_root(const YAML::Node &root, const Reader &r)
             s.w_max_radps = r.number(l["w_max_degps"], "limits.w_max_degps", 1e-6, 1000.0) * kDegToRad;
         }
     }
+    if (const YAML::Node f = root["fsw"]) {
+        r.check_keys(f, "fsw", {"table", "k_hat0", "bdot_max_degps"});
+        if (f["table"]) {
+            s.fsw.table = r.text(f["table"], "fsw.table");
+            bool known = false;
+            for (const char *t : {"obs_50hz_phys", "obs_50hz_paper", "obs_5hz_paper", "obs_paper_printed"}) {
+                known = known || (s.fsw.table == t);
+            }
+            if (!known) {
+                r.fail("fsw.table", f["table"], "unknown table '" + s.fsw.table + "'");
+            }
+        }
+        if (f["k_hat0"]) {
+            s.fsw.k_hat0 = r.number(f["k_hat0"], "fsw.k_hat0", 1e-4, 0.1);
+        }
+        if (f["bdot_max_degps"]) {
+            s.fsw.bdot_max_degps = r.number(f["bdot_max_degps"], "fsw.bdot_max_degps", 0.01, 20.0);
+        }
+    }
+    if (const YAML::Node f = root["faults"]) {
+        r.check_keys(f, "faults", {"seed", "drop_ppm", "dup_ppm", "reorder_ppm", "reorder_window", "bitflip_ppm",
+                                   "truncate_ppm", "gyro_nan_s", "gyro_spike_s"});
+        auto ppm = [&](const char *k, std::uint32_t &v) {
+            if (f[k]) {
+                v = static_cast<std::uint32_t>(r.integer(f[k], std::string("faults.") + k, 0, 1000000));
+            }
+        };
+        if (f["seed"]) {
+            s.faults.seed = r.unsigned64(f["seed"], "faults.seed");
+        }
+        ppm("drop_ppm", s.faults.drop_ppm);
+        ppm("dup_ppm", s.faults.dup_ppm);
+        ppm("reorder_ppm", s.faults.reorder_ppm);
+        ppm("bitflip_ppm", s.faults.bitflip_ppm);
+        ppm("truncate_ppm", s.faults.truncate_ppm);
+        if (f["reorder_window"]) {
+            s.faults.reorder_window = static_cast<std::uint32_t>(r.integer(f["reorder_window"], "faults.reorder_window", 1, 100));
+        }
+        if (f["gyro_nan_s"]) {
+            s.faults.gyro_nan_s = r.pair(f["gyro_nan_s"], "faults.gyro_nan_s", 0.0, 1.0e5);
+        }
+        if (f["gyro_spike_s"]) {
+            s.faults.gyro_spike_s = r.pair(f["gyro_spike_s"], "faults.gyro_spike_s", 0.0, 1.0e5);
+        }
+    }
+    if (const YAML::Node l = root["lockstep"]) {
+        r.check_keys(l, "lockstep", {"retx_ms", "deadline_ms", "retx_max"});
+        if (l["retx_ms"]) {
+            s.lockstep.retx_ms = static_cast<std::uint32_t>(r.integer(l["retx_ms"], "lockstep.retx_ms", 1, 60000));
+        }
+        if (l["deadline_ms"]) {
+            s.lockstep.deadline_ms = static_cast<std::uint32_t>(r.integer(l["deadline_ms"], "lockstep.deadline_ms", 1, 600000));
+        }
+        if (l["retx_max"]) {
+            s.lockstep.retx_max = static_cast<std::uint32_t>(r.integer(l["retx_max"], "lockstep.retx_max", 0, 100));
+        }
+    }
     // Cross-key checks.
     if (s.n_steps() == 0u) {
         r.fail("duration_s", root["duration_s"], "shorter than one period");
@@ -263,6 +321,12 @@ Scenario parse_root(const YAML::Node &root, const Reader &r)
 }
 
 }  // namespace
+
+bool FaultSetup::any() const
+{
+    return (drop_ppm | dup_ppm | reorder_ppm | bitflip_ppm | truncate_ppm) != 0u || gyro_nan_s[0] >= 0.0 ||
+           gyro_spike_s[0] >= 0.0;
+}
 
 double GyroConfig::lsb_radps() const { return std::ldexp(1.0, -lsb_shift); }
 double GimbalConfig::lsb_radps() const { return std::ldexp(1.0, -lsb_shift); }

@@ -34,6 +34,33 @@ struct GimbalConfig {
 
 enum class Propagator { Zoh, Ode };
 
+// Flight-side set-up of a SIL run (read by the bridge, never by the plant): the boot table and
+// the overrides a ground operator would upload before the run.
+struct FswSetup {
+    std::string table = "obs_50hz_phys";      // obs_50hz_phys | obs_50hz_paper | obs_5hz_paper | obs_paper_printed
+    double k_hat0 = 0.0;                      // K-hat(0) in s^-2; 0 = the table's value
+    double bdot_max_degps = 0.0;              // command vector limit; 0 = the table's value
+};
+
+// Link and sensor faults injected by the plant node (spec 00 §8; 10-observer S0-9). Rates are
+// integers in parts per million; one seeded stream decides them all (hil_host/fault).
+struct FaultSetup {
+    std::uint64_t seed = 1u;
+    std::uint32_t drop_ppm = 0u, dup_ppm = 0u, reorder_ppm = 0u, reorder_window = 1u;
+    std::uint32_t bitflip_ppm = 0u, truncate_ppm = 0u;
+    std::array<double, 2> gyro_nan_s{{-1.0, -1.0}};     // [t0, t1): gyro y truth is NaN
+    std::array<double, 2> gyro_spike_s{{-1.0, -1.0}};   // [t0, t1): gyro y count = INT32_MAX
+    bool any() const;
+};
+
+// Lock-step timing (spec 00 §5.2). In the in-process memq driver "no reply yet" is final after
+// the queue drains, so there the timeouts only bound the number of re-publications.
+struct LockstepSetup {
+    std::uint32_t retx_ms = 200u;
+    std::uint32_t deadline_ms = 1000u;
+    std::uint32_t retx_max = 2u;              // re-publications of one frame before it is missed
+};
+
 struct Scenario {
     std::string name;
     std::string source;                       // file it came from (for messages and logs)
@@ -52,6 +79,9 @@ struct Scenario {
     double w_max_radps = 0.0;                 // DIVERGED above this |w| (per axis)
     Propagator propagator = Propagator::Zoh;
     std::uint32_t ode_substeps = 0u;          // 0: automatic (|lambda|max * h_sub <= 1e-3)
+    FswSetup fsw;
+    FaultSetup faults;
+    LockstepSetup lockstep;
 
     double h_s() const { return static_cast<double>(period_us) * 1e-6; }
     std::uint64_t n_steps() const;            // round(duration / h)

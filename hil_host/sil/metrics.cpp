@@ -1,0 +1,194 @@
+#include "metrics.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "channels.hpp"
+#include "gnc/actuator_cmd_t.hpp"
+#include "gnc/fsw_tlm_frame_t.hpp"
+#include "gnc/sim_truth_t.hpp"
+#include "gnc/table_ack_t.hpp"
+
+extern "C" {
+#include "fsw_codec.h"
+#include "fsw_exec.h"
+}
+
+namespace sil {
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kActLsb = 1.0 / 1048576.0;   // gimbal command LSB 2^-20 rad/s (obs tables)
+
+// Field names in wire order (fsw/app/fsw_tlm_formats.json); types: 'q' i64, 'u' u32, 'i' i32.
+struct F { const char *name; char t; };
+const F kTlm[] = {
+    {"utime_us", 'q'}, {"seq", 'q'}, {"step", 'u'}, {"mode", 'u'}, {"health", 'u'}, {"health_sticky", 'u'},
+    {"n_chan_rej", 'u'}, {"n_stale_steps", 'u'}, {"n_in_bad", 'u'}, {"n_tbl_acc", 'u'}, {"n_tbl_rej", 'u'},
+    {"tbl_reason", 'u'}, {"tbl_revision", 'u'}, {"n_scrub_err", 'u'}, {"n_safe", 'u'}, {"n_mode_rej", 'u'},
+    {"host_missed", 'u'}, {"host_rejected", 'u'}, {"act_cnt_y", 'i'}, {"act_cnt_z", 'i'}, {"obs_health", 'u'},
+    {"obs_x_wy", 'i'}, {"obs_x_wz", 'i'}, {"obs_x_muy", 'i'}, {"obs_x_mudoty", 'i'}, {"obs_x_muz", 'i'},
+    {"obs_x_mudotz", 'i'}, {"obs_kappa", 'i'}, {"obs_u_y", 'i'}, {"obs_u_z", 'i'}, {"obs_e_y", 'i'},
+    {"obs_e_z", 'i'}, {"obs_d2_y", 'i'}, {"obs_d2_z", 'i'}, {"obs_pkk", 'i'}, {"obs_health_sticky", 'u'},
+    {"obs_n_skip", 'u'}, {"obs_n_gap", 'u'}, {"obs_n_lost", 'u'}, {"obs_n_reinit", 'u'}, {"obs_n_clamp_lo", 'u'},
+    {"obs_n_clamp_hi", 'u'}, {"obs_n_limited", 'u'}, {"obs_n_innov", 'u'}, {"obs_n_cov_clip", 'u'},
+    {"obs_revision", 'u'},
+};
+}  // namespace
+
+bool decode_fsw_tlm(const std::uint8_t *buf, std::size_t len, std::map<std::string, std::int64_t> &out)
+{
+    if (len != FSW_TLM_BYTES) {
+        return false;
+    }
+    fsw_rd_t r;
+    fsw_rd_init(&r, buf, static_cast<std::uint32_t>(len));
+    for (const F &f : kTlm) {
+        std::int64_t v = 0;
+        if (f.t == 'q') { v = fsw_rd_i64(&r); }
+        if (f.t == 'u') { v = static_cast<std::int64_t>(fsw_rd_u32(&r)); }
+        if (f.t == 'i') { v = fsw_rd_i32(&r); }
+        out[f.name] = v;
+    }
+    return !r.err && r.pos == len;
+}
+
+MetricsTap::MetricsTap(lcm_t *lcm, double tail_from_s) : lcm_(lcm), tail_from_s_(tail_from_s)
+{
+    subs_[0] = lcm_subscribe(lcm_, kChTruth, &MetricsTap::on_truth, this);
+    subs_[1] = lcm_subscribe(lcm_, kChCmd, &MetricsTap::on_cmd, this);
+    subs_[2] = lcm_subscribe(lcm_, kChTlm, &MetricsTap::on_tlm, this);
+    subs_[3] = lcm_subscribe(lcm_, kChTblAck, &MetricsTap::on_ack, this);
+}
+
+MetricsTap::~MetricsTap()
+{
+    for (auto *s : subs_) {
+        if (s != nullptr) { lcm_unsubscribe(lcm_, s); }
+    }
+}
+
+void MetricsTap::on_truth(const lcm_recv_buf_t *rb, const char *, void *user)
+{
+    auto *self = static_cast<MetricsTap *>(user);
+    gnc::sim_truth_t t;
+    if (t.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0) {
+        return;
+    }
+    Metrics &m = self->m_;
+    const double ts = static_cast<double>(t.utime) * 1e-6;
+    if (m.truth_n == 1) {
+        m.h_s = ts - m.t_last_s;
+    }
+    const double wy = t.state[0] / kDeg, wz = t.state[1] / kDeg;
+    const double mu = std::fmax(std::fabs(t.state[2]), std::fabs(t.state[4])) / kDeg;
+    const double wn = std::hypot(wy, wz);
+    const double h = (m.truth_n >= 1) ? m.h_s : 0.0;
+    if (wn >= 0.01) { m.t_s = ts + h; }
+    if (wn >= 0.01 || mu >= 0.01) { m.t_s_plus = ts + h; }
+    m.peak_w_degs = std::fmax(m.peak_w_degs, std::fmax(std::fabs(wy), std::fabs(wz)));
+    m.peak_mu_deg = std::fmax(m.peak_mu_deg, mu);
+    m.w_final_degs = wn;
+    if (ts >= self->tail_from_s_) {
+        m.max_w_tail_degs = std::fmax(m.max_w_tail_degs, wn);
+        m.max_mu_tail_deg = std::fmax(m.max_mu_tail_deg, mu);
+    }
+    m.k_true = t.extra[0];
+    m.t_last_s = ts;
+    ++m.truth_n;
+}
+
+void MetricsTap::on_cmd(const lcm_recv_buf_t *rb, const char *, void *user)
+{
+    auto *self = static_cast<MetricsTap *>(user);
+    gnc::actuator_cmd_t c;
+    if (c.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0) {
+        return;
+    }
+    for (int i = 0; i < 2 && i < c.n_counts; ++i) {
+        self->m_.peak_bdot_degs = std::fmax(self->m_.peak_bdot_degs, std::fabs(c.counts[i] * kActLsb) / kDeg);
+    }
+    ++self->m_.cmd_n;
+}
+
+void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
+{
+    auto *self = static_cast<MetricsTap *>(user);
+    gnc::fsw_tlm_frame_t f;
+    if (f.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0 || f.tlm_len < 0 || f.tlm_len > 512) {
+        ++self->m_.tlm_bad;
+        return;
+    }
+    Metrics &m = self->m_;
+    std::map<std::string, std::int64_t> d;
+    if (!decode_fsw_tlm(f.tlm, static_cast<std::size_t>(f.tlm_len), d)) {
+        ++m.tlm_bad;
+        return;
+    }
+    m.tlm = d;
+    m.k_hat_final = 0.01 * static_cast<double>(d["obs_kappa"]) / 268435456.0;
+    m.obs_health_sticky |= static_cast<std::uint32_t>(d["obs_health"]);
+    if (m.t_persist_s < 0.0 && (static_cast<std::uint32_t>(d["obs_health"]) & OBS_H_CMD_LIMIT_PERSIST) != 0u) {
+        m.t_persist_s = static_cast<double>(f.utime) * 1e-6;
+    }
+    if (m.t_first_fx_s < 0.0 && (static_cast<std::uint32_t>(d["health"]) & 0xFFu) != 0u) {
+        m.t_first_fx_s = static_cast<double>(f.utime) * 1e-6;
+        m.first_fx_bits = static_cast<std::uint32_t>(d["health"]) & 0xFFu;
+    }
+    m.bridge = {{"dups", f.dups}, {"stale", f.stale}, {"gaps", f.gaps}, {"rejected", f.rejected},
+                {"nonfinite_rej", f.nonfinite_rej}, {"range_rej", f.range_rej}, {"missed", f.missed},
+                {"table_rej", f.table_rej}};
+    ++m.tlm_n;
+}
+
+void MetricsTap::on_ack(const lcm_recv_buf_t *rb, const char *, void *user)
+{
+    auto *self = static_cast<MetricsTap *>(user);
+    gnc::table_ack_t a;
+    if (a.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0) {
+        return;
+    }
+    self->m_.last_ack_result = a.result;
+    self->m_.last_ack_reason = a.reason;
+    ++self->m_.ack_n;
+}
+
+std::string MetricsTap::summary() const
+{
+    std::ostringstream o;
+    char b[160];
+    auto line = [&](const char *k, double v, const char *fmt) {
+        std::snprintf(b, sizeof b, fmt, v);
+        o << k << " = " << b << "\n";
+    };
+    line("t_s_s", m_.t_s, "%.2f");
+    line("t_s_plus_s", m_.t_s_plus, "%.2f");
+    line("k_hat_final_per_s2", m_.k_hat_final, "%.6f");
+    line("k_true_per_s2", m_.k_true, "%.6f");
+    line("peak_bdot_degps", m_.peak_bdot_degs, "%.3f");
+    line("peak_mu_deg", m_.peak_mu_deg, "%.4f");
+    line("peak_w_degps", m_.peak_w_degs, "%.4f");
+    line("w_final_degps", m_.w_final_degs, "%.3g");
+    line("max_w_tail_degps", m_.max_w_tail_degs, "%.3g");
+    line("max_mu_tail_deg", m_.max_mu_tail_deg, "%.3g");
+    line("t_cmd_limit_persist_s", m_.t_persist_s, "%.2f");
+    line("t_first_fx_status_s", m_.t_first_fx_s, "%.2f");
+    line("first_fx_status_bits", static_cast<double>(m_.first_fx_bits), "%.0f");
+    o << "steps_truth = " << m_.truth_n << "\nsteps_tlm = " << m_.tlm_n << "\n";
+    for (const auto &kv : m_.bridge) { o << "bridge_" << kv.first << " = " << kv.second << "\n"; }
+    for (const char *k : {"mode", "n_chan_rej", "n_stale_steps", "n_tbl_acc", "n_tbl_rej", "tbl_revision", "n_safe",
+                          "host_missed", "obs_n_skip", "obs_n_gap", "obs_n_lost", "obs_n_reinit", "obs_n_limited",
+                          "obs_n_clamp_lo", "obs_n_clamp_hi", "obs_n_innov", "obs_n_cov_clip"}) {
+        auto it = m_.tlm.find(k);
+        o << "fsw_" << k << " = " << (it == m_.tlm.end() ? 0 : it->second) << "\n";
+    }
+    auto hs = m_.tlm.find("health_sticky");
+    std::snprintf(b, sizeof b, "0x%08llx", static_cast<unsigned long long>(hs == m_.tlm.end() ? 0 : hs->second));
+    o << "fsw_health_sticky = " << b << "\n";
+    std::snprintf(b, sizeof b, "0x%08x", m_.obs_health_sticky);
+    o << "obs_health_sticky = " << b << "\n";
+    return o.str();
+}
+
+}  // namespace sil

@@ -1,0 +1,93 @@
+// plant_node.hpp — the plant side of the lock-step protocol (spec 00 §5.2) over LCM.
+//
+// The simulator owns the clock: publish frame k (and truth k), wait for command k, apply it
+// (or hold the last one: a missed command), propagate, repeat. Faults of the scenario are
+// applied on the way out (hil_host/fault: drop, duplicate, reorder, bit flip, truncate; plus
+// a NaN gyro truth and an out-of-range count window).
+//
+// Two waiting disciplines:
+//   sync  (memq, one thread): the plant drains the lcm_t queue; everything the bridge will ever
+//         answer has then arrived, so "no command" is final at once. A frame is re-published
+//         up to lockstep.retx_max times, then the command is missed. Fully deterministic.
+//   async (udpm, separate processes): wall-clock retx_ms / deadline_ms of the scenario.
+// Missed commands are announced on GNC_CTL (HEARTBEAT from NODE_PLANT, status = missed count)
+// before the next frame, so the bridge reports them in telemetry.
+#ifndef HIL_SIL_PLANT_NODE_HPP
+#define HIL_SIL_PLANT_NODE_HPP
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm.h>
+
+#include "fault_injector.hpp"
+#include "plant/sail_plant.hpp"
+#include "scenario/scenario.hpp"
+
+namespace sil {
+
+struct PlantSummary {
+    std::uint64_t steps = 0;          // periods propagated
+    std::uint64_t missed = 0;         // commands not received for their frame
+    std::uint64_t retx = 0;           // frames re-published
+    std::uint64_t late_cmds = 0;      // commands for an earlier frame (dropped)
+    std::uint64_t dup_cmds = 0;       // second command for the current frame (ignored)
+    std::uint64_t bad_cmds = 0;       // undecodable commands
+    std::uint64_t nan_frames = 0;     // frames built from a NaN truth (fault window)
+    std::uint64_t spike_frames = 0;   // frames with an out-of-range count (fault window)
+    fault::FaultCounters faults{};
+    bool diverged = false;
+    double t_end_s = 0.0;
+    std::string reason;               // why the run ended early (DIVERGED, no bridge)
+    bool deterministic() const { return missed == 0 && retx == 0; }
+};
+
+class PlantNode {
+public:
+    // Hooks the runner may use between steps (e.g. a table upload at a given time).
+    using StepHook = std::function<void(std::uint64_t k, std::int64_t utime_us)>;
+
+    PlantNode(lcm_t *lcm, const sim::Scenario &scn, bool sync);
+    ~PlantNode();
+    PlantNode(const PlantNode &) = delete;
+    PlantNode &operator=(const PlantNode &) = delete;
+
+    void set_progress(std::function<void(std::uint64_t k, std::uint64_t n)> cb) { progress_ = std::move(cb); }
+    void set_before_frame(StepHook h) { before_frame_ = std::move(h); }
+    // async only: wait up to timeout_ms for the bridge's READY. false: none came.
+    bool wait_for_bridge(int timeout_ms);
+    PlantSummary run();
+    std::int64_t utime_us() const { return plant_.utime_us(); }
+
+private:
+    static void on_cmd_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
+    static void on_ctl_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
+    void on_cmd(const std::uint8_t *buf, std::size_t len);
+    void publish_frame(const sim::SensorFrame &f, std::int32_t plant_flags, bool through_faults);
+    void publish_truth(std::uint64_t k);
+    void publish_ctl(std::int32_t command, std::int32_t status);
+    bool wait_command(std::uint64_t k, const sim::SensorFrame &f);
+    void inject_sensor_faults(sim::SensorFrame &f, double t_s);
+
+    lcm_t *lcm_;
+    sim::Scenario scn_;
+    bool sync_;
+    sim::SailPlant plant_;
+    fault::FaultInjector inj_;
+    lcm_subscription_t *sub_cmd_ = nullptr;
+    lcm_subscription_t *sub_ctl_ = nullptr;
+    std::uint64_t k_ = 0;
+    bool got_ = false;
+    bool bridge_ready_ = false;
+    sim::ActuatorCmd cmd_{};
+    PlantSummary sum_{};
+    std::vector<std::uint8_t> buf_;
+    std::function<void(std::uint64_t, std::uint64_t)> progress_;
+    StepHook before_frame_;
+};
+
+}  // namespace sil
+
+#endif  // HIL_SIL_PLANT_NODE_HPP
