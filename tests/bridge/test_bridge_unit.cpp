@@ -150,6 +150,25 @@ void gate_unchanged_on_reject(void **)
     assert_int_equal(m.rejected, 4);
 }
 
+// A forward jump beyond kMaxSeqJump is a corrupted seq, not a gap: refused as malformed, the
+// gate stays put and the next genuine frame steps. The largest legal jump is a gap.
+void gate_refuses_implausible_jump(void **)
+{
+    bt::FakeBackend be;
+    Bridge br(be, limits_pm(1000000));
+    assert_true(br.on_frame(bt::make_frame(0, kPeriod)).outcome == Outcome::Stepped);
+    Frame f = bt::make_frame(1, kPeriod);
+    f.seq = 1 + (INT64_C(1) << 40);   // one high bit flipped
+    assert_true(br.on_frame(f).outcome == Outcome::Malformed);
+    f.seq = kMaxSeqJump + 1;          // last = 0: a jump of kMaxSeqJump + 1
+    assert_true(br.on_frame(f).outcome == Outcome::Malformed);
+    assert_int_equal(br.counters().malformed, 2);
+    assert_int_equal(br.gate().last(), 0);
+    assert_true(br.on_frame(bt::make_frame(1, kPeriod)).outcome == Outcome::Stepped);
+    assert_true(br.on_frame(bt::make_frame(1 + kMaxSeqJump, kPeriod)).outcome == Outcome::Gap);
+    assert_int_equal(br.counters().gap_frames, static_cast<int>(kMaxSeqJump - 1));
+}
+
 // Out-of-range counts: last good value, STALE bit for the flight code, range_rej.
 void validator_keeps_last_good(void **)
 {
@@ -412,6 +431,7 @@ int main(void)
         cmocka_unit_test(gate_table_rows),
         cmocka_unit_test(gate_before_first_and_first_seq),
         cmocka_unit_test(gate_unchanged_on_reject),
+        cmocka_unit_test(gate_refuses_implausible_jump),
         cmocka_unit_test(validator_keeps_last_good),
         cmocka_unit_test(si_adapter_values),
         cmocka_unit_test(si_adapter_frames),
