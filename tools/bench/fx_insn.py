@@ -21,6 +21,12 @@ reads. This script checks, and the report records:
     fx_crc32, a leaf, must equal the SysTick figure times the number of calls;
   * repeatability: --reps runs must print identical counts (QEMU icount is deterministic).
 Nothing here is pass/fail for CTest; the script exits non-zero only if a check fails.
+
+Impulse scheduler (spec 50 §4.7): the report compares the imp_* entries with the spec's regression
+budgets and flags the entries over budget (never a failure). One Newton iteration is derived per
+sample as imp_attempt(max_iter 1) - imp_attempt(max_iter 0) from the same start: the two runs
+share every instruction except one solve + update + evaluation (trig of every switching time,
+residual, Jacobian).
 """
 import argparse
 import datetime
@@ -38,6 +44,7 @@ QEMU_RUN = os.path.join(ROOT, "tools", "qemu-run.sh")
 ELF_REL = os.path.join("fsw", "target", "fx_bench.elf")
 CALLS_PER_BRACKET = 5
 MACHINES = {"cortex-m3": "mps2-an385", "cortex-m4": "mps2-an386"}
+IMP_WORST_ITERS = 240   # spec 50 §4.7: warm + rule + 16 (x-y), warm + rule + 4 (z), 10 iterations each
 
 
 def sh(cmd, **kw):
@@ -74,7 +81,7 @@ def run_bench(elf, machine):
 
 
 def parse(out):
-    d = {"cal": [], "tick": {}, "k": {}, "call": {}, "cpuid": None, "empty": None, "end": False}
+    d = {"cal": [], "tick": {}, "k": {}, "call": {}, "imp": {}, "cpuid": None, "empty": None, "end": False}
     for line in out.splitlines():
         p = line.split()
         if not p:
@@ -90,6 +97,9 @@ def parse(out):
         elif p[0] == "k" and len(p) == 5:
             d["k"].setdefault(p[1], []).append(int(p[3]))
             d["call"].setdefault(p[1], []).append(int(p[4]))
+        elif p[0] == "imp" and len(p) == 8:
+            d["imp"].setdefault(p[1], []).append({"sample": int(p[2]), "iters_total": int(p[3]), "outcome": int(p[4]),
+                                                  "how_xy": int(p[5]), "how_z": int(p[6]), "pattern": int(p[7])})
         elif p[0] == "end":
             d["end"] = True
     return d
@@ -159,6 +169,61 @@ def trace_count(build, machine, sym):
 
 def stats(v):
     return {"n": len(v), "min": min(v), "median": statistics.median(v), "max": max(v)}
+
+
+def imp_budgets(d):
+    """Spec 50 §4.7 budget rows from the imp_* entries: (item, budget, measured stats or None, note)."""
+    k, info = d["k"], d["imp"]
+    if "imp_solve_example" not in k:
+        return []
+    rows = []
+
+    def diff(a, b):
+        return [x - y for x, y in zip(k.get(a, []), k.get(b, []))]
+
+    it_xy, it_z = diff("imp_attempt_xy_max1", "imp_attempt_xy_max0"), diff("imp_attempt_z_max1", "imp_attempt_z_max0")
+    rows.append(("angle -> derived trig (`imp_trig`, sigma in [0, 2.2])", 250, stats(k["imp_trig"]),
+                 "two paths: sigma - sin sigma by series below 0.5 (max) or from sin (min)"))
+    rows.append(("Newton iteration, x-y (4 angles, residual, 4x4 solve)", 2500, stats(it_xy) if it_xy else None,
+                 "imp_attempt max_iter 1 - max_iter 0, 32 nominal states"))
+    rows.append(("Newton iteration, z", 800, stats(it_z) if it_z else None, "the same, z subsystem"))
+    ex = k["imp_solve_example"]
+    exi = info.get("imp_solve_example", [{}])[0]
+    rows.append(("nominal plan: `imp_solve`, paper's example", 30000, stats(ex),
+                 f"{exi.get('iters_total', '?')} Newton iterations in the accepted attempts, how x-y/z "
+                 f"{exi.get('how_xy', '?')}/{exi.get('how_z', '?')} (2 = rule)"))
+    nom, ninfo = k.get("imp_solve_nominal", []), info.get("imp_solve_nominal", [])
+    rule = [v for v, m in zip(nom, ninfo) if m["how_xy"] == 2 and m["how_z"] == 2]
+    srch = [v for v, m in zip(nom, ninfo) if not (m["how_xy"] == 2 and m["how_z"] == 2)]
+    if rule:
+        rows.append((f"nominal plan: `imp_solve`, random nominal states, rule valid ({len(rule)} of {len(nom)})",
+                     30000, stats(rule), "+-5 km / +-1 m/s, bench RNG"))
+    if srch:
+        rows.append((f"nominal box, rule invalid -> search ({len(srch)} of {len(nom)})", None, stats(srch),
+                     "no separate budget; counts towards the worst case"))
+    rnd = k.get("imp_round_best_nominal")
+    if rnd:
+        rows.append(("best rounding `imp_round_best` (part of the nominal plan)", None, stats(rnd),
+                     "nominal states, whole-step grid"))
+    if rule and rnd:
+        rows.append(("nominal plan: solve (rule valid) + rounding, min/median/max added", 30000,
+                     {"n": len(rule), "min": min(rule) + min(rnd),
+                      "median": statistics.median(rule) + statistics.median(rnd), "max": max(rule) + max(rnd)},
+                     "calibration update not implemented yet"))
+    for name, what in (("imp_solve_search_all", "hard wide-box states, every pattern tried"),
+                       ("imp_solve_search_all_rtol0", "the same with r_tol = 0 (attempts run to max_iter)")):
+        if name in k:
+            its = [m["iters_total"] for m in info.get(name, [])]
+            per = [v / m for v, m in zip(k[name], its) if m]
+            rows.append((f"worst-case plan: `imp_solve`, {what}", 600000, stats(k[name]),
+                         f"{min(its)}-{max(its)} Newton iterations; {min(per):.0f}-{max(per):.0f} instructions per "
+                         f"iteration including attempt set-up"))
+    if it_xy:
+        est = IMP_WORST_ITERS * max(it_xy)
+        rows.append((f"worst-case plan, extrapolated: {IMP_WORST_ITERS} x the largest x-y iteration", 600000,
+                     {"n": 1, "min": est, "median": est, "max": est}, "estimate, not a measurement"))
+    rows.append(("a step with no planning work (timeline, fault monitor)", 1500, None, "not measured (no imp_step entry)"))
+    return rows
 
 
 def tool_version(cmd):
@@ -249,7 +314,11 @@ def main():
                             "ticks": {str(k): v for k, v in ticks_per_insn(d).items()},
                             "null_twins_single_insn": bool(nulls) and all(v == 2 for v in nulls.values())},
             "cross_check": xcheck, "repetitions": len(outs), "repeatable": same,
-            "kernels": kernels, "errors": errs}
+            "kernels": kernels, "imp_solutions": d["imp"],
+            "imp_budgets": [{"item": it, "budget": bu, "measured": st, "note": no,
+                             "over": bool(bu is not None and st is not None and st["max"] > bu)}
+                            for it, bu, st, no in imp_budgets(d)],
+            "errors": errs}
         failed += [f"{board}: {e}" for e in errs]
 
     os.makedirs(a.out_dir, exist_ok=True)
@@ -283,6 +352,26 @@ def main():
                 s = kk["kernel"]
                 row += f" {s['min']} | {fmt_med(s['median'])} | {s['max']} | {fmt_med(kk['call']['median'])} |"
         md.append(row)
+    if any(report["boards"][b]["imp_budgets"] for b in boards):
+        md += ["", "## Impulse scheduler against spec 50 §4.7 (regression budgets, instructions)", "",
+               "Over-budget entries are flagged, never failed (spec 00 §9).", ""]
+        for b in boards:
+            rows = report["boards"][b]["imp_budgets"]
+            if not rows:
+                continue
+            md += [f"**{b}**", "", "| item | budget | min | median | max | status | note |",
+                   "|---|---:|---:|---:|---:|---|---|"]
+            for r in rows:
+                st, bu = r["measured"], r["budget"]
+                vals = " – | – | – |" if st is None else f" {st['min']} | {fmt_med(st['median'])} | {st['max']} |"
+                if st is None or bu is None:
+                    status = "–"
+                elif st["max"] > bu:
+                    status = f"**OVER** ({st['max'] / bu:.1f}x)"
+                else:
+                    status = "ok"
+                md.append(f"| {r['item']} | {bu if bu is not None else '–'} |{vals} {status} | {r['note']} |")
+            md.append("")
     md += ["", "## Calibration", ""]
     for b in boards:
         r = report["boards"][b]

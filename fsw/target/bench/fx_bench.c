@@ -24,7 +24,19 @@
  *   tick <N> <ticks>               one plain bracket around an N-NOP sled: ticks ~ N / 5
  *   empty <value>                  must be 4
  *   k <kernel> <sample> <kernel insns> <call insns>
+ *   imp <kernel> <sample> <iters_total> <outcome> <how_xy> <how_z> <pattern>   (imp_solve entries)
  *   end
+ *
+ * Impulse scheduler entries (spec 50 §4.7; fx_insn.py compares them with the budgets): one full
+ * imp_solve on the paper's example, on 32 random states of the nominal box, and on 8 hard states
+ * of the wide box where every polarity pattern of both subsystems is tried; the same 8 with
+ * r_tol = 0 (every attempt that does not fail early runs to max_iter, the closest real path to
+ * the spec's worst case); imp_attempt from (0, tau_f) with max_iter 0 and 1, whose difference per
+ * sample is exactly one Newton iteration (solve, update, trig of every switch, residual and
+ * Jacobian); imp_trig; imp_psi and imp_phie of axis x on precomputed trig (prep); imp_round_best
+ * after an imp_solve done outside the bracket (prep).
+ * The inputs are nav counts (1 mm, 10 um/s) converted with the flight table as imp.c does, so the
+ * image holds no floating point.
  */
 #include <stdint.h>
 #include <stddef.h>
@@ -32,6 +44,8 @@
 #include "fx.h"
 #include "obs.h"
 #include "obs_tables.h"
+#include "imp.h"
+#include "imp_tables.h"
 
 typedef void (*bench_fn_t)(uint32_t sample);
 
@@ -369,6 +383,159 @@ static void bn_obs(uint32_t i)
     bench_null_obs(&s_obs, &OBS_TBL_50HZ_PHYS, &in, &s_obs_out);
 }
 
+/* ------------------------------------------------------------------ impulse scheduler (spec 50) */
+
+#define IMP_B_STEPS    10550u        /* T = 1055 s at the table's 0.1 s tick (the example's horizon) */
+#define IMP_B_NHARD    8u
+#define IMP_B_POS_HALF 5000000u      /* nominal box: +-5 km in 1 mm counts */
+#define IMP_B_VEL_HALF 100000u       /* +-1 m/s in 10 um/s counts */
+#define IMP_B_SIG_MAX  1181116006u   /* 2.2 rad in q29 (trig inputs) */
+
+static imp_ws_t s_imp_ws;
+static imp_solution_t s_imp_sol;
+static imp_round_t s_imp_rd;
+static imp_problem_t s_imp_ex;
+static imp_problem_t s_imp_nom[BENCH_SAMPLES];
+static imp_problem_t s_imp_hard[IMP_B_NHARD];
+static uint8_t s_imp_pat[BENCH_SAMPLES][IMP_NSUB];   /* accepted pattern per subsystem (local bits) */
+static int32_t s_imp_sig[BENCH_SAMPLES];
+static int32_t s_imp_t1[2];                          /* attempt start (0, tau_f) */
+static int32_t s_imp_t2[2];
+static imp_params_t s_imp_p0;                        /* table with max_iter 0 */
+static imp_params_t s_imp_p1;                        /* table with max_iter 1 */
+static imp_params_t s_imp_pr0;                       /* table with r_tol 0 */
+static uint32_t s_imp_iters;
+static uint32_t s_imp_fres;
+static imp_trig_t s_imp_trig;
+
+/* Nav counts -> problem, with the table's scales (as imp.c's counts_to_state / steps_to_tau).
+   Every field starts from zero (a START plan: no warm start, not a re-plan, all thrusters, and
+   whatever fields imp.h adds later), then horizon, state and the table's thrust factors. */
+static void imp_b_problem(imp_problem_t *pr, const int32_t *cnt)
+{
+    static const imp_problem_t zero = {0};   /* zero-initialised */
+    const imp_params_t *p = &IMP_TBL_DEFAULT;
+    fx_status_t st = 0u;
+    uint32_t i;
+
+    *pr = zero;
+    pr->tauf_q29 = fx_rshift_sat((int64_t)IMP_B_STEPS * (int64_t)p->k_tau_m, p->k_tau_sh, &st);
+    for (i = 0u; i < IMP_NX; i++) {
+        pr->x0_q28[i] = ((i % 2u) == 0u) ? fx_from_count(cnt[i], p->k_pos_m, p->k_pos_sh, 0, &st)
+                                         : fx_from_count(cnt[i], p->k_vel_m, p->k_vel_sh, 0, &st);
+        pr->alpha_q30[i] = p->alpha_q30[i];
+    }
+    bench_sink_u = st;
+}
+
+static void imp_b_fill(void)
+{
+    /* The paper's example (spec 50 §3.4): (5000 m, -1 m/s, 4000 m, -1 m/s, 4000 m, -1 m/s). */
+    static const int32_t imp_ex_cnt[6] = { 5000000, -100000, 4000000, -100000, 4000000, -100000 };
+
+    /* Hard states (x mm, x' 10 um/s, y, y', z, z'): the 8 wide-box samples with the most Newton
+       iterations in `python -m tools.impulse mc --box wide --n 20000 --seed 1` (indices 10833, 11903,
+       17514, 18632, 18279, 14510, 3352, 639). Each tries all 16 x-y and all 4 z patterns; all end
+       NO_SOLUTION except 3352 (z by search); 115-131 iterations per plan. */
+    static const int32_t imp_hard_cnt[IMP_B_NHARD][6] = {
+        { -12181513, -185765, 8838026, -430571, 14990051, -362879 },
+        { -11333225, -263614, 7623191, -298395, -15244169, 419758 },
+        { 5519283, -192526, -8797119, -415941, -15158082, 432694 },
+        { -5388079, -69182, 9872606, 186689, -13467093, 60167 },
+        { -11051604, -306469, 8736599, -482792, 13821770, -192210 },
+        { -7194759, -393804, 7649026, -20424, -15622763, 316625 },
+        { -13579218, -384520, 76533, 392088, -10288477, 465371 },
+        { -3550354, 182274, 9608917, 227431, 12268150, 138981 },
+    };
+    int32_t cnt[6];
+    uint32_t i;
+    uint32_t j;
+
+    s_imp_p0 = IMP_TBL_DEFAULT;
+    s_imp_p0.max_iter = 0u;
+    s_imp_p1 = IMP_TBL_DEFAULT;
+    s_imp_p1.max_iter = 1u;
+    s_imp_pr0 = IMP_TBL_DEFAULT;
+    s_imp_pr0.r_tol_lsb = 0;
+    imp_b_problem(&s_imp_ex, imp_ex_cnt);
+    for (i = 0u; i < IMP_B_NHARD; i++) {
+        imp_b_problem(&s_imp_hard[i], imp_hard_cnt[i]);
+    }
+    for (i = 0u; i < BENCH_SAMPLES; i++) {
+        for (j = 0u; j < IMP_NX; j++) {
+            uint32_t half = ((j % 2u) == 0u) ? IMP_B_POS_HALF : IMP_B_VEL_HALF;
+            uint32_t r = bench_u32() % ((2u * half) + 1u);
+            cnt[j] = (int32_t)r - (int32_t)half;
+        }
+        imp_b_problem(&s_imp_nom[i], cnt);
+        /* the accepted polarities (every nominal state is solved, spec 50 §3.5) */
+        imp_solve(&s_imp_ws, &IMP_TBL_DEFAULT, &s_imp_nom[i], &s_imp_sol);
+        s_imp_pat[i][IMP_SUB_XY] = (uint8_t)(s_imp_sol.pattern & 0x0Fu);
+        {
+            uint32_t zpat = ((uint32_t)s_imp_sol.pattern >> 4) & 0x03u;
+            s_imp_pat[i][IMP_SUB_Z] = (uint8_t)zpat;
+        }
+        {
+            uint32_t sig = bench_u32() % IMP_B_SIG_MAX;
+            s_imp_sig[i] = (int32_t)sig;
+        }
+    }
+    s_imp_t1[0] = 0;
+    s_imp_t1[1] = 0;
+    s_imp_t2[0] = s_imp_ex.tauf_q29;
+    s_imp_t2[1] = s_imp_ex.tauf_q29;
+}
+
+void bench_null_imp_solve(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, imp_solution_t *sol);
+uint32_t bench_null_imp_attempt(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, uint32_t sub,
+                                uint32_t pat, const int32_t *t1_q29, const int32_t *t2_q29, uint32_t *iters,
+                                uint32_t *fres_lsb, fx_status_t *ast);
+void bench_null_imp_trig(int32_t sig_q29, imp_trig_t *t, fx_status_t *st);
+void bench_null_imp_vec(uint32_t axis, int32_t sig_q29, const imp_trig_t *t, int32_t *v_q28, fx_status_t *st);
+void bench_null_imp_round(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, const imp_solution_t *sol,
+                          uint32_t n_total, imp_round_t *rd, fx_status_t *st);
+
+#define W_IMP_SOLVE(F, P, PR) do { (F)(&s_imp_ws, (P), (PR), &s_imp_sol); \
+        bench_sink_u = s_imp_sol.iters_total; } while (0)
+#define W_IMP_ATT(F, P, SUB, i) do { bench_st = 0u; \
+        bench_sink_u = (F)(&s_imp_ws, (P), &s_imp_nom[i], (SUB), s_imp_pat[i][SUB], s_imp_t1, s_imp_t2, \
+                           &s_imp_iters, &s_imp_fres, &bench_st); } while (0)
+#define W_IMP_TRIG(F, i) do { bench_st = 0u; \
+        (F)(s_imp_sig[i], &s_imp_trig, &bench_st); bench_sink_u = bench_st; } while (0)
+#define W_IMP_ROUND(F, i) do { bench_st = 0u; \
+        (F)(&s_imp_ws, &IMP_TBL_DEFAULT, &s_imp_nom[i], &s_imp_sol, IMP_B_STEPS, &s_imp_rd, &bench_st); \
+        bench_sink_u = bench_st; } while (0)
+
+static void bk_imp_ex(uint32_t i)     { (void)i; W_IMP_SOLVE(imp_solve, &IMP_TBL_DEFAULT, &s_imp_ex); }
+static void bn_imp_ex(uint32_t i)     { (void)i; W_IMP_SOLVE(bench_null_imp_solve, &IMP_TBL_DEFAULT, &s_imp_ex); }
+static void bk_imp_nom(uint32_t i)    { W_IMP_SOLVE(imp_solve, &IMP_TBL_DEFAULT, &s_imp_nom[i]); }
+static void bn_imp_nom(uint32_t i)    { W_IMP_SOLVE(bench_null_imp_solve, &IMP_TBL_DEFAULT, &s_imp_nom[i]); }
+static void bk_imp_hard(uint32_t i)   { W_IMP_SOLVE(imp_solve, &IMP_TBL_DEFAULT, &s_imp_hard[i]); }
+static void bn_imp_hard(uint32_t i)   { W_IMP_SOLVE(bench_null_imp_solve, &IMP_TBL_DEFAULT, &s_imp_hard[i]); }
+static void bk_imp_hard0(uint32_t i)  { W_IMP_SOLVE(imp_solve, &s_imp_pr0, &s_imp_hard[i]); }
+static void bn_imp_hard0(uint32_t i)  { W_IMP_SOLVE(bench_null_imp_solve, &s_imp_pr0, &s_imp_hard[i]); }
+static void bk_imp_xy0(uint32_t i)    { W_IMP_ATT(imp_attempt, &s_imp_p0, IMP_SUB_XY, i); }
+static void bn_imp_xy0(uint32_t i)    { W_IMP_ATT(bench_null_imp_attempt, &s_imp_p0, IMP_SUB_XY, i); }
+static void bk_imp_xy1(uint32_t i)    { W_IMP_ATT(imp_attempt, &s_imp_p1, IMP_SUB_XY, i); }
+static void bn_imp_xy1(uint32_t i)    { W_IMP_ATT(bench_null_imp_attempt, &s_imp_p1, IMP_SUB_XY, i); }
+static void bk_imp_z0(uint32_t i)     { W_IMP_ATT(imp_attempt, &s_imp_p0, IMP_SUB_Z, i); }
+static void bn_imp_z0(uint32_t i)     { W_IMP_ATT(bench_null_imp_attempt, &s_imp_p0, IMP_SUB_Z, i); }
+static void bk_imp_z1(uint32_t i)     { W_IMP_ATT(imp_attempt, &s_imp_p1, IMP_SUB_Z, i); }
+static void bn_imp_z1(uint32_t i)     { W_IMP_ATT(bench_null_imp_attempt, &s_imp_p1, IMP_SUB_Z, i); }
+static void bk_imp_trig(uint32_t i)   { W_IMP_TRIG(imp_trig, i); }
+static void bn_imp_trig(uint32_t i)   { W_IMP_TRIG(bench_null_imp_trig, i); }
+static void bk_imp_round(uint32_t i)  { W_IMP_ROUND(imp_round_best, i); }
+static void bn_imp_round(uint32_t i)  { W_IMP_ROUND(bench_null_imp_round, i); }
+#define W_IMP_VEC(F, i) do { bench_st = 0u; \
+        (F)(0u, s_imp_sig[i], &s_imp_trig, bench_out, &bench_st); bench_sink_u = bench_st; } while (0)
+static void bk_imp_psi(uint32_t i)    { W_IMP_VEC(imp_psi, i); }
+static void bk_imp_phie(uint32_t i)   { W_IMP_VEC(imp_phie, i); }
+static void bn_imp_vec(uint32_t i)    { W_IMP_VEC(bench_null_imp_vec, i); }
+/* Outside the bracket: the derived trig that imp_psi / imp_phie take. */
+static void bp_imp_trig(uint32_t i)   { fx_status_t st = 0u; imp_trig(s_imp_sig[i], &s_imp_trig, &st); }
+/* Outside the bracket: the solve whose workspace imp_round_best needs. */
+static void bp_imp_round(uint32_t i)  { imp_solve(&s_imp_ws, &IMP_TBL_DEFAULT, &s_imp_nom[i], &s_imp_sol); }
+
 static void bench_empty(uint32_t i)
 {
     (void)i;
@@ -378,6 +545,9 @@ typedef struct {
     const char *name;
     bench_fn_t kernel;
     bench_fn_t twin;
+    bench_fn_t prep;      /* run before each sample's brackets (not measured), or NULL */
+    uint32_t samples;     /* samples 0..samples-1 (<= BENCH_SAMPLES) */
+    uint32_t imp_info;    /* 1: print the imp_solve solution summary after the sample */
 } bench_kernel_t;
 
 /* ------------------------------------------------------------------ calibration */
@@ -435,20 +605,32 @@ static void bench_calibrate(void)
 int main(void)
 {
     static const bench_kernel_t kernels[] = {
-        { "fx_mul", bk_mul, bn_mul },
-        { "fx_div", bk_div, bn_div },
-        { "fx_sqrt", bk_sqrt, bn_sqrt },
-        { "fx_isqrt64", bk_isqrt, bn_isqrt },
-        { "fx_norm3", bk_norm3, bn_norm3 },
-        { "fx_sincos", bk_sincos, bn_sincos },
-        { "fx_atan2_bam", bk_atan2, bn_atan2 },
-        { "fx_dot_n6", bk_dot, bn_dot },
-        { "fx_matvec_6x6", bk_matvec, bn_matvec },
-        { "fx_matmul_4x4", bk_matmul, bn_matmul },
-        { "fx_solve_n4", bk_solve4, bn_solve4 },
-        { "fx_solve_n2", bk_solve2, bn_solve2 },
-        { "fx_crc32_64B", bk_crc, bn_crc },
-        { "obs_step_50hz_phys", bk_obs, bn_obs },
+        { "fx_mul", bk_mul, bn_mul, NULL, BENCH_SAMPLES, 0u },
+        { "fx_div", bk_div, bn_div, NULL, BENCH_SAMPLES, 0u },
+        { "fx_sqrt", bk_sqrt, bn_sqrt, NULL, BENCH_SAMPLES, 0u },
+        { "fx_isqrt64", bk_isqrt, bn_isqrt, NULL, BENCH_SAMPLES, 0u },
+        { "fx_norm3", bk_norm3, bn_norm3, NULL, BENCH_SAMPLES, 0u },
+        { "fx_sincos", bk_sincos, bn_sincos, NULL, BENCH_SAMPLES, 0u },
+        { "fx_atan2_bam", bk_atan2, bn_atan2, NULL, BENCH_SAMPLES, 0u },
+        { "fx_dot_n6", bk_dot, bn_dot, NULL, BENCH_SAMPLES, 0u },
+        { "fx_matvec_6x6", bk_matvec, bn_matvec, NULL, BENCH_SAMPLES, 0u },
+        { "fx_matmul_4x4", bk_matmul, bn_matmul, NULL, BENCH_SAMPLES, 0u },
+        { "fx_solve_n4", bk_solve4, bn_solve4, NULL, BENCH_SAMPLES, 0u },
+        { "fx_solve_n2", bk_solve2, bn_solve2, NULL, BENCH_SAMPLES, 0u },
+        { "fx_crc32_64B", bk_crc, bn_crc, NULL, BENCH_SAMPLES, 0u },
+        { "obs_step_50hz_phys", bk_obs, bn_obs, NULL, BENCH_SAMPLES, 0u },
+        { "imp_trig", bk_imp_trig, bn_imp_trig, NULL, BENCH_SAMPLES, 0u },
+        { "imp_psi_x", bk_imp_psi, bn_imp_vec, bp_imp_trig, BENCH_SAMPLES, 0u },
+        { "imp_phie_x", bk_imp_phie, bn_imp_vec, bp_imp_trig, BENCH_SAMPLES, 0u },
+        { "imp_attempt_xy_max0", bk_imp_xy0, bn_imp_xy0, NULL, BENCH_SAMPLES, 0u },
+        { "imp_attempt_xy_max1", bk_imp_xy1, bn_imp_xy1, NULL, BENCH_SAMPLES, 0u },
+        { "imp_attempt_z_max0", bk_imp_z0, bn_imp_z0, NULL, BENCH_SAMPLES, 0u },
+        { "imp_attempt_z_max1", bk_imp_z1, bn_imp_z1, NULL, BENCH_SAMPLES, 0u },
+        { "imp_solve_example", bk_imp_ex, bn_imp_ex, NULL, 4u, 1u },
+        { "imp_solve_nominal", bk_imp_nom, bn_imp_nom, NULL, BENCH_SAMPLES, 1u },
+        { "imp_round_best_nominal", bk_imp_round, bn_imp_round, bp_imp_round, BENCH_SAMPLES, 0u },
+        { "imp_solve_search_all", bk_imp_hard, bn_imp_hard, NULL, IMP_B_NHARD, 1u },
+        { "imp_solve_search_all_rtol0", bk_imp_hard0, bn_imp_hard0, NULL, IMP_B_NHARD, 1u },
     };
     size_t k;
     uint32_t i;
@@ -462,17 +644,23 @@ int main(void)
     bench_put_u32(empty);
     board_console_write("\n");
     bench_fill();
+    imp_b_fill();
     (void)obs_init(&s_obs, &OBS_TBL_50HZ_PHYS, &s_obs_out);
     for (i = 0u; i < 10u; i++) {
         bk_obs(i);   /* initialise the filter; measure steady-state steps */
     }
     for (k = 0u; k < (sizeof(kernels) / sizeof(kernels[0])); k++) {
         const bench_kernel_t *bk = &kernels[k];
-        for (i = 0u; i < BENCH_SAMPLES; i++) {
+        for (i = 0u; i < bk->samples; i++) {
             bench_fn_t fk = bk->kernel;
             bench_fn_t fn = bk->twin;
-            uint32_t wk = bench_bracket5(fk, i);
-            uint32_t wn = bench_bracket5(fn, i);
+            uint32_t wk;
+            uint32_t wn;
+            if (bk->prep != NULL) {
+                bk->prep(i);
+            }
+            wk = bench_bracket5(fk, i);
+            wn = bench_bracket5(fn, i);
             board_console_write("k ");
             board_console_write(bk->name);
             board_console_write(" ");
@@ -482,6 +670,24 @@ int main(void)
             board_console_write(" ");
             bench_put_i32((int32_t)wk - (int32_t)empty);
             board_console_write("\n");
+            if (bk->imp_info != 0u) {
+                /* s_imp_sol is the kernel's (the twin calls a null function) */
+                board_console_write("imp ");
+                board_console_write(bk->name);
+                board_console_write(" ");
+                bench_put_u32(i);
+                board_console_write(" ");
+                bench_put_u32(s_imp_sol.iters_total);
+                board_console_write(" ");
+                bench_put_u32(s_imp_sol.outcome);
+                board_console_write(" ");
+                bench_put_u32(s_imp_sol.how[IMP_SUB_XY]);
+                board_console_write(" ");
+                bench_put_u32(s_imp_sol.how[IMP_SUB_Z]);
+                board_console_write(" ");
+                bench_put_u32(s_imp_sol.pattern);
+                board_console_write("\n");
+            }
         }
     }
     board_console_write("end\n");

@@ -111,3 +111,8 @@ bench_sled_\n:
     NULLFN bench_null_solve
     NULLFN bench_null_crc
     NULLFN bench_null_obs
+    NULLFN bench_null_imp_solve
+    NULLFN bench_null_imp_attempt
+    NULLFN bench_null_imp_trig
+    NULLFN bench_null_imp_round
+    NULLFN bench_null_imp_vec
