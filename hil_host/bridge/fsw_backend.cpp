@@ -97,7 +97,8 @@ bool InProcessFswBackend::step(const Frame &f, StepOutput &out)
         if ((f.status[i] & kStatusSat) != 0) { st = static_cast<std::uint8_t>(st | FSW_ST_SAT); }
         in.status[i] = st;
     }
-    in.mode_cmd = FSW_CMD_NONE;
+    in.mode_cmd = mode_cmd_;
+    mode_cmd_ = FSW_CMD_NONE;
     in.host_missed = missed_;
     in.host_rejected = rejected_;
     fsw_step(f_.get(), &in, &out_);
@@ -110,6 +111,17 @@ bool InProcessFswBackend::step(const Frame &f, StepOutput &out)
     out.tlm_layout_version = static_cast<std::int32_t>(FSW_TLM_LAYOUT_VERSION);
     out.tlm_len = static_cast<std::int16_t>(fsw_tlm_encode(&out_.tlm, out.tlm, static_cast<std::uint32_t>(kMaxTlm)));
     return true;
+}
+
+bool InProcessFswBackend::command(const FswCommand &c)
+{
+    // The executive checks the target mode itself (refused ones are counted in its telemetry);
+    // here only a negative value, which has no uint32 meaning, is refused.
+    if (c.cmd == kCmdMode && c.args[0] >= 0) {
+        mode_cmd_ = static_cast<std::uint32_t>(c.args[0]);
+        return true;
+    }
+    return false;
 }
 
 bool InProcessFswBackend::table_chunk(const TableChunk &c, TableAck &ack)

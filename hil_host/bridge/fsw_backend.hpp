@@ -34,6 +34,7 @@ public:
     bool step(const Frame &f, StepOutput &out) override;
     void host_counters(const Counters &c) override;
     bool table_chunk(const TableChunk &c, TableAck &ack) override;
+    bool command(const FswCommand &c) override;
     const char *name() const override { return "sil-fsw"; }
 
     const fsw_out_t &last_out() const { return out_; }
@@ -47,6 +48,7 @@ private:
     std::unique_ptr<fsw_t> f_;          // ~12 KiB: on the heap of the host process
     fsw_out_t out_{};
     std::uint32_t missed_ = 0, rejected_ = 0;
+    std::uint32_t mode_cmd_ = FSW_CMD_NONE;   // for the next step only
     bool ok_ = false;
 };
 

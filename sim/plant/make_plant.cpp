@@ -1,0 +1,17 @@
+#include "plant/make_plant.hpp"
+
+#include <stdexcept>
+
+#include "plant/sail_plant.hpp"
+
+namespace sim {
+
+std::unique_ptr<Plant> make_plant(const Scenario &scn)
+{
+    if (scn.plant == "sail") {
+        return std::unique_ptr<Plant>(new SailPlant(scn));
+    }
+    throw std::invalid_argument("scenario '" + scn.name + "': no SIL plant '" + scn.plant + "' in this build");
+}
+
+}  // namespace sim
