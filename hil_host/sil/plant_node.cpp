@@ -136,7 +136,9 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
         m.counts[i] = (i < f.n_ch) ? f.cnt[i] : 0;
         std::int8_t st = 0;
         if (i < f.n_ch) {
-            if ((f.status[i] & sim::kStatusNonFinite) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_STALE); }
+            if ((f.status[i] & (sim::kStatusNonFinite | sim::kStatusInvalid)) != 0u) {
+                st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_STALE);
+            }
             if ((f.status[i] & sim::kStatusSat) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_SAT); }
         }
         m.status[i] = st;

@@ -24,6 +24,7 @@ constexpr std::size_t kMaxChannels = 16u;
 // Per-channel sensor status bits.
 constexpr std::uint8_t kStatusSat = 0x01u;        // count at full scale (true value may be beyond it)
 constexpr std::uint8_t kStatusNonFinite = 0x02u;  // truth was NaN/Inf; the count is 0 and SAT is also set
+constexpr std::uint8_t kStatusInvalid = 0x04u;    // the sensor delivered no valid sample (dropout, out of range)
 
 struct SensorFrame {
     std::int64_t utime_us = 0;     // t_k

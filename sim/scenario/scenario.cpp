@@ -361,8 +361,9 @@ void parse_cw_root(const YAML::Node &root, const Reader &r, Scenario &s)
         r.check_keys(f, "fsw", {"table"});
         if (f["table"]) {
             s.fsw.table = r.text(f["table"], "fsw.table");
-            if (s.fsw.table != "imp_default") {
-                r.fail("fsw.table", f["table"], "unknown rendezvous table '" + s.fsw.table + "' (imp_default)");
+            if (s.fsw.table != "imp_default" && s.fsw.table != "imp_1s" && s.fsw.table != "imp_sub1ms") {
+                r.fail("fsw.table", f["table"], "unknown rendezvous table '" + s.fsw.table +
+                                                    "' (imp_default, imp_1s, imp_sub1ms)");
             }
         }
     }
