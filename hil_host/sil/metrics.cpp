@@ -1,5 +1,6 @@
 #include "metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -86,9 +87,10 @@ MetricsTap::~MetricsTap()
     }
 }
 
-void MetricsTap::set_rendezvous(std::int64_t tf_step)
+void MetricsTap::set_rendezvous(std::int64_t t0_step, std::int64_t tf_step)
 {
     m_.rdv = true;
+    m_.t0_step = t0_step;
     m_.tf_step = tf_step;
 }
 
@@ -110,6 +112,8 @@ void rdv_truth(Metrics &m, const gnc::sim_truth_t &t)
         m.dv_used_mps += t.state[6 + j];
     }
     m.violations = t.state[12];
+    m.omega_radps = t.extra[0];
+    m.a_nom_mps2 = t.extra[1];
 }
 
 const char *const kImpFlags[] = {"INFEASIBLE", "NO_SOLUTION", "MARGINAL", "NAV_STALE", "THRUST_LEVEL",
@@ -128,7 +132,22 @@ void rdv_tlm(Metrics &m, std::map<std::string, std::int64_t> &d, double ts)
     }
     if ((h & IMP_H_STUCK_OFF) != 0u && m.t_first.count("STUCK_OFF") == 0u) { m.t_first["STUCK_OFF"] = ts; }
     if ((h & IMP_H_STUCK_ON) != 0u && m.t_first.count("STUCK_ON") == 0u) { m.t_first["STUCK_ON"] = ts; }
+    m.max_iters_xy = std::max(m.max_iters_xy, static_cast<std::uint32_t>(d["imp_iters_xy"]));
+    m.max_iters_z = std::max(m.max_iters_z, static_cast<std::uint32_t>(d["imp_iters_z"]));
     const auto mode = static_cast<std::uint32_t>(d["imp_mode"]);
+    // The START plan's delta-v: a_nom * sum over the axes of (T1 + T - T2), from the first
+    // telemetry that shows the committed plan (ARMED), T = t_f - t0.
+    if (mode == IMP_MODE_ARMED && m.plan_dv_mps < 0.0 && m.omega_radps > 0.0 && m.t0_step >= 0) {
+        const double dt = (m.truth_n > 1) ? (m.t_last_s / static_cast<double>(m.truth_n - 1)) : 0.0;
+        const double T = static_cast<double>(m.tf_step - m.t0_step) * dt;
+        double s = 0.0;
+        for (const char *ax : {"x", "y", "z"}) {
+            const double t1 = static_cast<double>(d[std::string("imp_t1_") + ax]) / 536870912.0 / m.omega_radps;
+            const double t2 = static_cast<double>(d[std::string("imp_t2_") + ax]) / 536870912.0 / m.omega_radps;
+            s += t1 + T - t2;
+        }
+        m.plan_dv_mps = m.a_nom_mps2 * s;
+    }
     if (mode < 10u) {
         m.imp_modes_seen |= 1u << mode;
         if (m.t_first.count(kImpModes[mode]) == 0u) { m.t_first[kImpModes[mode]] = ts; }
@@ -248,6 +267,9 @@ std::string MetricsTap::summary() const
         line("miss_r_m", m_.miss_r_m, "%.4f");
         line("miss_v_mps", m_.miss_v_mps, "%.6f");
         line("dv_used_mps", m_.dv_used_mps, "%.4f");
+        line("plan_dv_mps", m_.plan_dv_mps, "%.4f");
+        line("max_iters_xy", m_.max_iters_xy, "%.0f");
+        line("max_iters_z", m_.max_iters_z, "%.0f");
         line("interlock_violations", m_.violations, "%.0f");
         o << "t_f_step = " << m_.tf_step << "\nthruster_on_steps = " << m_.thr_on_steps << "\nsteps_truth = " << m_.truth_n
           << "\nsteps_tlm = " << m_.tlm_n << "\n";

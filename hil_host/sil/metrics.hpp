@@ -49,6 +49,10 @@ struct Metrics {
     std::uint32_t imp_mode_final = 0;
     std::uint32_t imp_modes_seen = 0;             // bit m: IMP_MODE m seen
     std::map<std::string, double> t_first;        // first time of an impulse health flag / mode
+    double omega_radps = 0.0, a_nom_mps2 = 0.0;   // from the plant's truth
+    std::int64_t t0_step = -1;
+    double plan_dv_mps = -1.0;                    // the START plan's delta-v (first ARMED telemetry)
+    std::uint32_t max_iters_xy = 0, max_iters_z = 0;
 };
 
 class MetricsTap {
@@ -56,7 +60,7 @@ public:
     // tail_from_s: samples at t >= tail_from_s feed the "tail" maxima (e.g. duration - 20).
     MetricsTap(lcm_t *lcm, double tail_from_s);
     // Rendezvous metrics: the terminal miss at step tf_step (the plant's k of t_f).
-    void set_rendezvous(std::int64_t tf_step);
+    void set_rendezvous(std::int64_t t0_step, std::int64_t tf_step);
     ~MetricsTap();
     MetricsTap(const MetricsTap &) = delete;
     MetricsTap &operator=(const MetricsTap &) = delete;

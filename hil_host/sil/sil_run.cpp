@@ -65,13 +65,14 @@ void configure_metrics(MetricsTap &mt, const sim::Scenario &scn)
     if (scn.plant != "cw") {
         return;
     }
-    std::int64_t tf = -1;
+    std::int64_t t0 = -1, tf = -1;
     for (const sim::ScnCommand &c : scn.commands) {
         if (c.cmd == bridge::kCmdImpStart && tf < 0) {
+            t0 = c.args[0];
             tf = c.args[1];
         }
     }
-    mt.set_rendezvous(tf);
+    mt.set_rendezvous(t0, tf);
 }
 
 namespace {
