@@ -2,24 +2,44 @@
  * fsw_exec.c — the executive (spec 00 §3.3). See fsw_exec.h for the step order.
  *
  * Mode rules (spec 00 §3.3; fsw/app/README.md "Executive"):
- *   BOOT     → cfg.boot_mode at the first step when the observer table is valid, else SAFE
- *   STANDBY  ↔ DETUMBLE by command; any mode → SAFE by command
+ *   BOOT     → cfg.boot_mode at the first step when the module table is valid, else SAFE
+ *   STANDBY  ↔ the mission mode (DETUMBLE or RENDEZVOUS) by command; any mode → SAFE by command
  *   SAFE     → STANDBY by command only; entered automatically on a channel invalid for
  *              stale_max steps, a plant SAT bit held for stale_max steps, or a failed scrub
  * The observer runs only in DETUMBLE and is re-initialised on every entry: outside DETUMBLE the
  * actuators hold their safe value (zero rate), which the observer's model would not know.
  * CMD_LIMIT_PERSIST is reported, not a SAFE trigger: with insufficient authority the spec's
  * scenario (10-observer S0-9) expects the loop to keep commanding and the plant to end DIVERGED.
+ * RENDEZVOUS: the impulse scheduler runs in its mode (initialised on entry); a stale nav sample
+ * is never a SAFE trigger, because the scheduler flies a dropout open loop by design (spec 50 §8
+ * "nav dropout in FIRING"); its own faults (STUCK_*, INTERLOCK) raise FSW_H_MODULE.
  */
 #include "fsw_exec.h"
 #include "fx.h"
 
 #define OBS_FAULT_BITS (OBS_H_MEAS_LOST | OBS_H_CMD_LIMIT_PERSIST | OBS_H_COV_CLIP | 0xFFu)
+#define IMP_FAULT_BITS (IMP_H_STUCK_OFF | IMP_H_STUCK_ON | IMP_H_INTERLOCK | 0xFFu)
+#define IMP_ALL_THRUSTERS 0x3Fu
 
-static void zero_out(fsw_out_t *out)
+static bool rdv(const fsw_t *f)
+{
+    return f->cfg.mission == FSW_MISSION_RENDEZVOUS;
+}
+
+static uint32_t n_act(const fsw_t *f)
+{
+    return rdv(f) ? FSW_RDV_N_ACT : FSW_N_ACT;
+}
+
+static uint32_t mission_mode(const fsw_t *f)
+{
+    return rdv(f) ? FSW_MODE_RENDEZVOUS : FSW_MODE_DETUMBLE;
+}
+
+static void zero_out(const fsw_t *f, fsw_out_t *out)
 {
     uint32_t i;
-    out->n_act = FSW_N_ACT;
+    out->n_act = n_act(f);
     for (i = 0u; i < FSW_ACT_MAX; i++) {
         out->act_cnt[i] = 0;
     }
@@ -73,33 +93,68 @@ static fsw_rc_t check_candidate(fsw_t *f, uint32_t *why)
     return rc;
 }
 
+/* The state every mission starts from: BOOT, no table, counters zero. */
+static void reset_common(fsw_t *f, const fsw_cfg_t *cfg)
+{
+    /* Read-only zero images (rodata, no state) so the reset is a struct copy without a large
+       stack temporary. */
+    static const fsw_tlm_t tlm_zero = {0};
+    static const obs_out_t obs_out_zero = {0};
+    static const imp_out_t imp_out_zero = {0};
+    uint32_t i;
+    f->cfg = *cfg;
+    f->init_ok = false;
+    f->mode = FSW_MODE_BOOT;
+    f->step = 0u;
+    f->have_obs_p = false;
+    f->tbl_rej_pending = false;
+    for (i = 0u; i < FSW_RDV_N_SENS; i++) {
+        f->last_good[i] = 0;
+        f->stale_run[i] = 0u;
+        f->sat_run[i] = 0u;
+    }
+    f->tlm = tlm_zero;
+    f->tlm.mission = cfg->mission;
+    f->obs_o = obs_out_zero;
+    f->imp_o = imp_out_zero;
+}
+
+static bool cfg_ok(const fsw_cfg_t *cfg, uint32_t mission, uint32_t mode)
+{
+    return (cfg != NULL) && (cfg->mission == mission) && (cfg->period_us > 0u) && (cfg->stale_max >= 1u) &&
+           ((cfg->boot_mode == FSW_MODE_STANDBY) || (cfg->boot_mode == mode));
+}
+
+fsw_rc_t fsw_init_rdv(fsw_t *f, const fsw_cfg_t *cfg, const imp_params_t *boot_imp, uint32_t revision)
+{
+    fsw_rc_t rc = FSW_ERR_ARG;
+    if ((f != NULL) && (boot_imp != NULL) && cfg_ok(cfg, FSW_MISSION_RENDEZVOUS, FSW_MODE_RENDEZVOUS)) {
+        uint32_t why = 0u;
+        reset_common(f, cfg);
+        f->imp_p = *boot_imp;
+        f->imp_p.revision = revision;
+        rc = imp_params_check(&f->imp_p, &why);
+        if ((rc == FSW_OK) && (f->imp_p.period_us == cfg->period_us)) {
+            f->init_ok = true;
+            (void)imp_init(&f->imp_s, &f->imp_p, &f->imp_o);
+        } else {
+            rc = FSW_ERR_INVARIANT;
+            f->tlm.tbl_reason = why;
+            fx_cnt_inc(&f->tlm.n_tbl_rej);
+        }
+        f->tlm.tbl_revision = revision;
+    }
+    return rc;
+}
+
 fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const obs_params_t *boot_obs, uint32_t revision)
 {
     fsw_rc_t rc = FSW_ERR_ARG;
-    if ((f != NULL) && (cfg != NULL) && (boot_obs != NULL) && (cfg->period_us > 0u) &&
-        (cfg->stale_max >= 1u) &&
-        ((cfg->boot_mode == FSW_MODE_STANDBY) || (cfg->boot_mode == FSW_MODE_DETUMBLE))) {
-        /* Read-only zero images (rodata, no state) so the reset is a struct copy without a
-           large stack temporary. */
-        static const fsw_tlm_t tlm_zero = {0};
-        static const obs_out_t obs_out_zero = {0};
+    if ((f != NULL) && (boot_obs != NULL) && cfg_ok(cfg, FSW_MISSION_DETUMBLE, FSW_MODE_DETUMBLE)) {
         uint8_t *img = f->boot_img;   /* fsw_table_init resets obs_tbl, then copies it */
         uint32_t n;
         uint32_t why = 0u;
-        f->cfg = *cfg;
-        f->init_ok = false;
-        f->mode = FSW_MODE_BOOT;
-        f->step = 0u;
-        f->have_obs_p = false;
-        f->tbl_rej_pending = false;
-        f->last_good[0] = 0;
-        f->last_good[1] = 0;
-        f->stale_run[0] = 0u;
-        f->stale_run[1] = 0u;
-        f->sat_run[0] = 0u;
-        f->sat_run[1] = 0u;
-        f->tlm = tlm_zero;
-        f->obs_o = obs_out_zero;
+        reset_common(f, cfg);
         n = fsw_obs_table_encode(boot_obs, revision, img, (uint32_t)sizeof(f->boot_img));
         rc = fsw_table_init(&f->obs_tbl, &FSW_TBL_DESC_OBS, img, n, &why);
         if ((rc == FSW_OK) && (fsw_table_payload(&f->obs_tbl, NULL) != NULL) && load_active(f)) {
@@ -129,7 +184,14 @@ fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why)
 {
     fsw_rc_t rc = FSW_ERR_ARG;
     uint32_t w = 0u;
-    if ((f != NULL) && (c != NULL)) {
+    if ((f != NULL) && (c != NULL) && rdv(f)) {
+        /* The RENDEZVOUS mission takes no table upload in this build: refused, nothing kept. */
+        w = FSW_TBL_R_UPLOAD_ID;
+        f->tbl_rej_pending = true;
+        f->tlm.tbl_reason = w;
+        fx_cnt_inc(&f->tlm.n_tbl_rej);
+        rc = FSW_ERR_STATE;
+    } else if ((f != NULL) && (c != NULL)) {
         uint32_t before = f->obs_tbl.rejects;
         rc = fsw_table_chunk(&f->obs_tbl, c, &w);
         if ((rc == FSW_OK) && (f->obs_tbl.state == FSW_TBL_S_READY)) {
@@ -140,6 +202,8 @@ fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why)
             f->tlm.tbl_reason = w;
             fx_cnt_inc(&f->tlm.n_tbl_rej);
         }
+    } else {
+        /* null arguments: FSW_ERR_ARG */
     }
     if (why != NULL) {
         *why = w;
@@ -197,15 +261,76 @@ static void accept_inputs(fsw_t *f, const fsw_in_t *in, obs_in_t *oi, uint32_t *
     }
 }
 
-static bool cmd_allowed(uint32_t from, uint32_t to)
+/* RENDEZVOUS steps 2-3: the nav sample is one unit, valid only when all 7 channels are present,
+   not STALE and inside the accepted ranges; an invalid sample is passed on as invalid (the
+   module keeps its last accepted one and flies on), counted, and never a SAFE trigger. */
+static void accept_nav(fsw_t *f, const fsw_in_t *in, uint32_t *hx)
+{
+    uint32_t i;
+    bool ok = in->n_counts >= FSW_RDV_N_SENS;
+    imp_in_t *ii = &f->imp_i;
+    if (!ok) {
+        fx_cnt_inc(&f->tlm.n_in_bad);
+    }
+    for (i = 0u; ok && (i < FSW_RDV_N_SENS); i++) {
+        int32_t c = in->counts[i];
+        int32_t hi = (i < 3u) ? FSW_NAV_POS_MAX_MM : ((i < 6u) ? FSW_NAV_VEL_MAX_CNT : INT32_MAX);
+        int32_t lo = (i < 6u) ? (-hi) : 0;
+        ok = ((in->status[i] & FSW_ST_STALE) == 0u) && (c >= lo) && (c <= hi);
+    }
+    ii->nav_valid = ok ? 1u : 0u;
+    for (i = 0u; i < IMP_NAX; i++) {
+        ii->nav_pos_mm[i] = ok ? in->counts[i] : 0;
+        ii->nav_vel_cnt[i] = ok ? in->counts[3u + i] : 0;
+    }
+    ii->nav_step = ok ? (uint32_t)in->counts[6] : 0u;
+    if (!ok) {
+        *hx |= FSW_H_STALE;
+        fx_cnt_inc(&f->tlm.n_chan_rej);
+        fx_cnt_inc(&f->tlm.n_stale_steps);
+    }
+}
+
+/* RENDEZVOUS: the step index and this step's telecommand for the impulse scheduler. A module
+   telecommand outside the mission mode is refused and counted here. */
+static void rdv_command(fsw_t *f, const fsw_in_t *in, uint32_t mode, uint32_t *hx)
+{
+    imp_in_t *ii = &f->imp_i;
+    uint32_t i;
+    ii->step = (uint32_t)((uint64_t)in->seq & 0xFFFFFFFFu);
+    ii->avail_mask = IMP_ALL_THRUSTERS;
+    ii->cmd = IMP_CMD_NONE;
+    if (in->tc != FSW_TC_NONE) {
+        bool known = (in->tc == FSW_TC_IMP_START) || (in->tc == FSW_TC_IMP_ABORT) || (in->tc == FSW_TC_IMP_CLEAR);
+        if (known && (mode == FSW_MODE_RENDEZVOUS)) {
+            ii->cmd = (in->tc == FSW_TC_IMP_START) ? IMP_CMD_START
+                    : ((in->tc == FSW_TC_IMP_ABORT) ? IMP_CMD_ABORT : IMP_CMD_CLEAR_FAULTS);
+            fx_cnt_inc(&f->tlm.n_tc);
+        } else {
+            *hx |= FSW_H_TC_REJ;
+            fx_cnt_inc(&f->tlm.n_tc_rej);
+        }
+    }
+    /* Negative step arguments have no meaning: they become a time START refuses. */
+    ii->cmd_t0_step = (in->tc_arg[0] < 0) ? 0u : (uint32_t)in->tc_arg[0];
+    ii->cmd_tf_step = (in->tc_arg[1] < 0) ? 0u : (uint32_t)in->tc_arg[1];
+    for (i = 0u; i < IMP_NAX; i++) {
+        ii->cmd_tgt_pos_mm[i] = in->tc_arg[2u + i];
+        ii->cmd_tgt_vel_cnt[i] = in->tc_arg[5u + i];
+    }
+}
+
+static bool cmd_allowed(const fsw_t *f, uint32_t from, uint32_t to)
 {
     bool ok = false;
+    uint32_t mm = mission_mode(f);
     switch (from) {
     case FSW_MODE_STANDBY:
-        ok = (to == FSW_MODE_DETUMBLE) || (to == FSW_MODE_SAFE) || (to == FSW_MODE_STANDBY);
+        ok = (to == mm) || (to == FSW_MODE_SAFE) || (to == FSW_MODE_STANDBY);
         break;
     case FSW_MODE_DETUMBLE:
-        ok = (to == FSW_MODE_STANDBY) || (to == FSW_MODE_SAFE) || (to == FSW_MODE_DETUMBLE);
+    case FSW_MODE_RENDEZVOUS:
+        ok = (from == mm) && ((to == FSW_MODE_STANDBY) || (to == FSW_MODE_SAFE) || (to == from));
         break;
     case FSW_MODE_SAFE:
         ok = (to == FSW_MODE_STANDBY) || (to == FSW_MODE_SAFE);
@@ -224,7 +349,7 @@ static uint32_t next_mode(fsw_t *f, const fsw_in_t *in, uint32_t *hx)
     if (m == FSW_MODE_BOOT) {
         m = f->init_ok ? f->cfg.boot_mode : FSW_MODE_SAFE;
     } else if (in->mode_cmd != FSW_CMD_NONE) {
-        if ((in->mode_cmd < FSW_MODE_COUNT) && cmd_allowed(m, in->mode_cmd)) {
+        if ((in->mode_cmd < FSW_MODE_COUNT) && cmd_allowed(f, m, in->mode_cmd)) {
             m = in->mode_cmd;
         } else {
             *hx |= FSW_H_MODE_REJ;
@@ -244,7 +369,10 @@ static uint32_t next_mode(fsw_t *f, const fsw_in_t *in, uint32_t *hx)
 static uint32_t tables_at_boundary(fsw_t *f)
 {
     uint32_t hx = 0u;
-    if (fsw_table_commit(&f->obs_tbl)) {
+    if (rdv(f)) {
+        /* The impulse table is the boot table (no upload path in this build). */
+        hx = f->init_ok ? 0u : FSW_H_NO_TABLE;
+    } else if (fsw_table_commit(&f->obs_tbl)) {
         uint32_t i;
         int8_t old_ls[OBS_NZ];
         bool same_scale = f->have_obs_p;
@@ -263,11 +391,13 @@ static uint32_t tables_at_boundary(fsw_t *f)
                 (void)obs_init(&f->obs_s, &f->obs_p, &f->obs_o);
             }
         }
+    } else {
+        /* no candidate to commit */
     }
-    if (!f->have_obs_p) {
+    if ((!rdv(f)) && (!f->have_obs_p)) {
         hx |= FSW_H_NO_TABLE;
     }
-    if ((f->mode != FSW_MODE_BOOT) && (fsw_table_scrub(&f->obs_tbl) != FSW_OK)) {
+    if ((!rdv(f)) && (f->mode != FSW_MODE_BOOT) && (fsw_table_scrub(&f->obs_tbl) != FSW_OK)) {
         hx |= FSW_H_SCRUB;
     }
     if (f->tbl_rej_pending) {
@@ -277,12 +407,36 @@ static uint32_t tables_at_boundary(fsw_t *f)
     return hx;
 }
 
-/* Steps 5-6: the modules of this mode, and actuator counts (safe values outside DETUMBLE).
-   Returns the observer health word (0 when it did not run). */
+/* Steps 5-6: the modules of this mode, and actuator counts (safe values outside the mission
+   mode). Returns the health word of the module that ran (0 when none did). */
+static uint32_t run_rdv(fsw_t *f, uint32_t mode, fsw_out_t *out, uint32_t *hx)
+{
+    uint32_t h = 0u;
+    if (mode == FSW_MODE_RENDEZVOUS) {
+        uint32_t j;
+        imp_step(&f->imp_s, &f->imp_p, &f->imp_i, &f->imp_o);
+        h = f->imp_o.health;
+        for (j = 0u; j < IMP_NTHR; j++) {
+            /* within one period (imp_step's invariant), so the int32 conversion is exact */
+            uint32_t s0 = f->imp_o.on_start_cnt[j] & 0x7FFFFFFFu;
+            uint32_t l0 = f->imp_o.on_len_cnt[j] & 0x7FFFFFFFu;
+            out->act_cnt[j] = (int32_t)s0;
+            out->act_cnt[IMP_NTHR + j] = (int32_t)l0;
+        }
+        out->act_cnt[FSW_RDV_ACT_MASK] = (int32_t)f->imp_o.on_mask;
+        if ((h & IMP_FAULT_BITS) != 0u) {
+            *hx |= FSW_H_MODULE;
+        }
+    }
+    return h;
+}
+
 static uint32_t run_modules(fsw_t *f, uint32_t mode, const obs_in_t *oi, fsw_out_t *out, uint32_t *hx)
 {
     uint32_t obs_h = 0u;
-    if (mode == FSW_MODE_DETUMBLE) {
+    if (rdv(f)) {
+        obs_h = run_rdv(f, mode, out, hx);
+    } else if (mode == FSW_MODE_DETUMBLE) {
         uint32_t i;
         obs_step(&f->obs_s, &f->obs_p, oi, &f->obs_o);
         obs_h = f->obs_o.health;
@@ -292,6 +446,8 @@ static uint32_t run_modules(fsw_t *f, uint32_t mode, const obs_in_t *oi, fsw_out
         if ((obs_h & OBS_FAULT_BITS) != 0u) {
             *hx |= FSW_H_MODULE;
         }
+    } else {
+        /* STANDBY, SAFE: no module runs, actuators hold their safe values */
     }
     if (mode == FSW_MODE_SAFE) {
         *hx |= FSW_H_SAFE;
@@ -300,7 +456,7 @@ static uint32_t run_modules(fsw_t *f, uint32_t mode, const obs_in_t *oi, fsw_out
 }
 
 /* Step 7: health aggregation and telemetry. */
-static void fill_tlm(fsw_t *f, const fsw_in_t *in, uint32_t obs_h, fsw_out_t *out)
+static void fill_tlm(fsw_t *f, const fsw_in_t *in, uint32_t mod_h, fsw_out_t *out)
 {
     uint32_t i;
     f->tlm.utime_us = in->utime_us;
@@ -309,18 +465,25 @@ static void fill_tlm(fsw_t *f, const fsw_in_t *in, uint32_t obs_h, fsw_out_t *ou
     f->tlm.mode = out->mode;
     f->tlm.health = out->health;
     f->tlm.health_sticky |= out->health;
-    if (f->obs_tbl.rejects != 0u) {
-        f->tlm.tbl_reason = f->obs_tbl.last_reason;
+    if (!rdv(f)) {
+        if (f->obs_tbl.rejects != 0u) {
+            f->tlm.tbl_reason = f->obs_tbl.last_reason;
+        }
+        f->tlm.tbl_revision = fsw_table_revision(&f->obs_tbl);
+        f->tlm.n_scrub_err = f->obs_tbl.scrub_errs;
     }
-    f->tlm.tbl_revision = fsw_table_revision(&f->obs_tbl);
-    f->tlm.n_scrub_err = f->obs_tbl.scrub_errs;
     f->tlm.host_missed = in->host_missed;
     f->tlm.host_rejected = in->host_rejected;
-    for (i = 0u; i < FSW_N_ACT; i++) {
-        f->tlm.act_cnt[i] = out->act_cnt[i];
+    for (i = 0u; i < FSW_RDV_N_ACT; i++) {
+        f->tlm.act_cnt[i] = (i < n_act(f)) ? out->act_cnt[i] : 0;
     }
-    f->tlm.obs_health = obs_h;
-    f->tlm.obs = f->obs_o.tlm;
+    if (rdv(f)) {
+        f->tlm.imp_health = mod_h;
+        f->tlm.imp = f->imp_o.tlm;
+    } else {
+        f->tlm.obs_health = mod_h;
+        f->tlm.obs = f->obs_o.tlm;
+    }
     out->tlm = f->tlm;
 }
 
@@ -328,14 +491,19 @@ void fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out)
 {
     uint32_t hx;
     uint32_t mode;
-    uint32_t obs_h;
-    obs_in_t oi;
-    zero_out(out);
+    uint32_t mod_h;
+    obs_in_t oi = {0u, {0, 0}, 0u, 0u};
+    zero_out(f, out);
     fx_cnt_inc(&f->step);
     hx = tables_at_boundary(f);
-    /* 2-3. inputs (the observer converts counts with its table's shift) */
-    accept_inputs(f, in, &oi, &hx);
-    /* 4. modes; the observer restarts on every entry to DETUMBLE */
+    /* 2-3. inputs (the observer converts counts with its table's shift; so does the impulse
+       scheduler with its count scales) */
+    if (rdv(f)) {
+        accept_nav(f, in, &hx);
+    } else {
+        accept_inputs(f, in, &oi, &hx);
+    }
+    /* 4. modes; a module restarts on every entry to its mode */
     mode = next_mode(f, in, &hx);
     if ((mode == FSW_MODE_SAFE) && (f->mode != FSW_MODE_SAFE)) {
         fx_cnt_inc(&f->tlm.n_safe);
@@ -343,9 +511,15 @@ void fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out)
     if ((mode == FSW_MODE_DETUMBLE) && (f->mode != FSW_MODE_DETUMBLE)) {
         (void)obs_init(&f->obs_s, &f->obs_p, &f->obs_o);
     }
+    if ((mode == FSW_MODE_RENDEZVOUS) && (f->mode != FSW_MODE_RENDEZVOUS)) {
+        (void)imp_init(&f->imp_s, &f->imp_p, &f->imp_o);
+    }
+    if (rdv(f)) {
+        rdv_command(f, in, mode, &hx);
+    }
     f->mode = mode;
-    obs_h = run_modules(f, mode, &oi, out, &hx);
+    mod_h = run_modules(f, mode, &oi, out, &hx);
     out->mode = mode;
-    out->health = hx | (obs_h & 0xFFu);
-    fill_tlm(f, in, obs_h, out);
+    out->health = hx | (mod_h & 0xFFu);
+    fill_tlm(f, in, mod_h, out);
 }

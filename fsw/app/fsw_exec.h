@@ -9,9 +9,18 @@
  * stale) → mode manager → observer (DETUMBLE only) → actuator counts (safe values outside
  * DETUMBLE) → health aggregation → telemetry.
  *
- * Channel map of this build (observer only; later modules extend the maps):
- *   sensor counts[0] = gyro y, counts[1] = gyro z  (2^-20 rad/s LSB per the obs table)
- *   actuator counts[0] = gimbal rate y, counts[1] = gimbal rate z (obs table act_cnt_shift)
+ * Missions (fsw_cfg_t.mission) and their channel maps:
+ *   DETUMBLE (sail platform, spec 10): the observer in mode DETUMBLE.
+ *     sensor   counts[0] = gyro y, counts[1] = gyro z  (2^-20 rad/s LSB per the obs table)
+ *     actuator counts[0] = gimbal rate y, counts[1] = gimbal rate z (obs table act_cnt_shift)
+ *   RENDEZVOUS (chaser, spec 50): the impulse scheduler in mode RENDEZVOUS.
+ *     sensor   counts[0..2] = nav position x, y, z [1 mm], counts[3..5] = nav velocity
+ *              [10 um/s], counts[6] = the sample's step index (the plant's k); one sample,
+ *              valid only when all 7 channels are
+ *     actuator counts[0..5] = on_start_cnt, [6..11] = on_len_cnt [1 us within the step],
+ *              [12] = on_mask (bit j: thruster +x, -x, +y, -y, +z, -z)
+ * The impulse scheduler's time base is the frame's seq (the plant's step index k, as in its
+ * commands and nav tags), not the executive's step counter, so lost frames do not shift it.
  */
 #ifndef FSW_APP_EXEC_H
 #define FSW_APP_EXEC_H
@@ -21,11 +30,24 @@
 #include "fsw_types.h"
 #include "fsw_table.h"
 #include "obs.h"
+#include "imp.h"
 
 #define FSW_IN_MAX   16u   /* sensor channels a frame can carry (sensor_frame_t.counts[16]) */
 #define FSW_ACT_MAX  16u   /* actuator channels (actuator_cmd_t.counts[16]) */
-#define FSW_N_SENS   2u    /* channels this build consumes */
-#define FSW_N_ACT    2u    /* channels this build drives */
+#define FSW_N_SENS   2u    /* channels the DETUMBLE mission consumes */
+#define FSW_N_ACT    2u    /* channels the DETUMBLE mission drives */
+#define FSW_RDV_N_SENS 7u  /* RENDEZVOUS: nav position (3), velocity (3), sample step */
+#define FSW_RDV_N_ACT  13u /* RENDEZVOUS: on_start (6), on_len (6), on_mask */
+#define FSW_RDV_ACT_MASK 12u /* index of on_mask in the actuator counts */
+
+/* Missions (fsw_cfg_t.mission). */
+#define FSW_MISSION_DETUMBLE   0u
+#define FSW_MISSION_RENDEZVOUS 1u
+
+/* Nav counts accepted by the executive: +-200 km (1 mm) and +-250 m/s (10 um/s), inside the
+   impulse scheduler's q28 state range (+-8 length units = +-250 km, +-283 m/s at 400 km). */
+#define FSW_NAV_POS_MAX_MM   INT32_C(200000000)
+#define FSW_NAV_VEL_MAX_CNT  INT32_C(25000000)
 
 /* Per-channel status bits from the plant (sensor_frame_t.STATUS_*). */
 #define FSW_ST_STALE 1u
@@ -36,9 +58,16 @@
 #define FSW_MODE_STANDBY  1u
 #define FSW_MODE_DETUMBLE 2u
 #define FSW_MODE_SAFE     3u
-#define FSW_MODE_COUNT    4u
+#define FSW_MODE_RENDEZVOUS 4u
+#define FSW_MODE_COUNT    5u
 
 #define FSW_CMD_NONE      0xFFFFFFFFu   /* fsw_in_t.mode_cmd: no mode command this step */
+
+/* Telecommands for a module (fsw_in_t.tc; gnc.fsw_cmd_t CMD_IMP_*). */
+#define FSW_TC_NONE       0u
+#define FSW_TC_IMP_START  2u   /* tc_arg: t0 step, tf step, target pos mm x y z, vel 10 um/s x y z */
+#define FSW_TC_IMP_ABORT  3u
+#define FSW_TC_IMP_CLEAR  4u
 
 /* Executive health bits 8..19 (bits 0..7: OR of the modules' fx status this step). */
 #define FSW_H_STALE          (0x00000100u)  /* a consumed channel is invalid this step */
@@ -50,21 +79,26 @@
 #define FSW_H_TBL_REJ        (0x00004000u)  /* a table upload was refused since the last step */
 #define FSW_H_TBL_NEW        (0x00008000u)  /* a new table became active at this step */
 #define FSW_H_MODULE         (0x00010000u)  /* a module reports a fault bit (see obs_health) */
-#define FSW_H_NO_TABLE       (0x00020000u)  /* no valid observer table (boot table refused) */
+#define FSW_H_NO_TABLE       (0x00020000u)  /* no valid module table (boot table refused) */
+#define FSW_H_TC_REJ         (0x00040000u)  /* a telecommand was refused this step (wrong mode) */
 
 /* Table registry. */
 #define FSW_TBL_ID_OBS       0x0B01u
 #define FSW_TBL_OBS_LAYOUT   1u
 #define FSW_TBL_OBS_PAYLOAD  646u          /* bytes; fsw_obs_table.c documents the layout */
+#define FSW_TBL_ID_IMP       0x0B04u
 
 /* Telemetry layout version carried beside the encoded bytes (fsw_tlm_frame_t). */
-#define FSW_TLM_LAYOUT_VERSION  0x00010001u
+#define FSW_TLM_LAYOUT_VERSION  0x00010001u   /* DETUMBLE mission (fsw_tlm_formats.json) */
 #define FSW_TLM_BYTES           192u       /* encoded size of fsw_tlm_t (fsw_tlm_encode) */
+#define FSW_TLM_RDV_LAYOUT_VERSION 0x00020001u   /* RENDEZVOUS (fsw_tlm_formats_rdv.json) */
+#define FSW_TLM_RDV_BYTES       502u       /* its encoded size (generated fsw_tlm_rdv.c) */
 
 typedef struct {
     uint32_t period_us;      /* control period; every module table must agree */
     uint16_t stale_max;      /* consecutive invalid steps on a channel before SAFE (>= 1) */
-    uint32_t boot_mode;      /* mode entered after BOOT: STANDBY or DETUMBLE */
+    uint32_t boot_mode;      /* mode entered after BOOT: STANDBY or the mission mode */
+    uint32_t mission;        /* FSW_MISSION_* */
 } fsw_cfg_t;
 
 typedef struct {
@@ -76,6 +110,8 @@ typedef struct {
     uint32_t mode_cmd;       /* FSW_CMD_NONE or a target mode */
     uint32_t host_missed;    /* host-reported cumulative counters, copied into telemetry */
     uint32_t host_rejected;
+    uint32_t tc;             /* FSW_TC_* telecommand this step, FSW_TC_NONE otherwise */
+    int32_t  tc_arg[8];
 } fsw_in_t;
 
 typedef struct {
@@ -97,9 +133,14 @@ typedef struct {
     uint32_t n_mode_rej;     /* refused mode commands */
     uint32_t host_missed;
     uint32_t host_rejected;
-    int32_t  act_cnt[FSW_N_ACT];
+    int32_t  act_cnt[FSW_RDV_N_ACT];   /* the mission's actuator counts (DETUMBLE: 2) */
     uint32_t obs_health;     /* observer health word of this step (0 when not run) */
     obs_tlm_t obs;           /* observer telemetry (last run) */
+    uint32_t mission;
+    uint32_t n_tc;           /* telecommands taken by a module */
+    uint32_t n_tc_rej;       /* telecommands refused (wrong mode) */
+    uint32_t imp_health;     /* impulse health word of this step (0 when not run) */
+    imp_tlm_t imp;           /* impulse telemetry (last run) */
 } fsw_tlm_t;
 
 typedef struct {
@@ -125,10 +166,14 @@ typedef struct {
     /* modules */
     obs_state_t  obs_s;
     obs_out_t    obs_o;
+    imp_params_t imp_p;              /* active impulse table (RENDEZVOUS) */
+    imp_state_t  imp_s;
+    imp_out_t    imp_o;
+    imp_in_t     imp_i;
     /* input acceptance */
-    int32_t      last_good[FSW_N_SENS];
-    uint32_t     stale_run[FSW_N_SENS];
-    uint32_t     sat_run[FSW_N_SENS];
+    int32_t      last_good[FSW_RDV_N_SENS];
+    uint32_t     stale_run[FSW_RDV_N_SENS];
+    uint32_t     sat_run[FSW_RDV_N_SENS];
     fsw_tlm_t    tlm;                /* counters live here */
 } fsw_t;
 
@@ -138,14 +183,20 @@ typedef struct {
  * table that fails its checks leaves the executive in BOOT → SAFE with FSW_H_NO_TABLE.
  */
 fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const obs_params_t *boot_obs, uint32_t revision);
+/* The RENDEZVOUS mission (cfg->mission == FSW_MISSION_RENDEZVOUS): the impulse scheduler with
+   its boot table, checked by imp_params_check (FSW_ERR_INVARIANT and SAFE when it fails). */
+fsw_rc_t fsw_init_rdv(fsw_t *f, const fsw_cfg_t *cfg, const imp_params_t *boot_imp, uint32_t revision);
 void     fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out);
 /* One upload chunk, between steps. A completed candidate is decoded and module-checked at
    once; it becomes active at the next fsw_step. *why gets the loader's reason word. */
 fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why);
 
-/* Encodes t little-endian (FSW_TLM_BYTES; layout in fsw_tlm_formats.json). Returns the
-   bytes written, 0 if cap is too small. */
+/* Encodes t little-endian in its mission's layout (DETUMBLE: FSW_TLM_BYTES, fsw_tlm_formats.json;
+   RENDEZVOUS: FSW_TLM_RDV_BYTES, fsw_tlm_formats_rdv.json). Returns the bytes written, 0 if cap
+   is too small. fsw_tlm_layout() gives the layout version of t. */
 uint32_t fsw_tlm_encode(const fsw_tlm_t *t, uint8_t *buf, uint32_t cap);
+uint32_t fsw_tlm_layout(const fsw_tlm_t *t);
+uint32_t fsw_tlm_rdv_encode(const fsw_tlm_t *t, uint8_t *buf, uint32_t cap);   /* generated */
 
 /* Observer table image (fsw_obs_table.c). */
 extern const fsw_table_desc_t FSW_TBL_DESC_OBS;

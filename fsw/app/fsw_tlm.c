@@ -5,10 +5,18 @@
 #include "fsw_exec.h"
 #include "fsw_codec.h"
 
+uint32_t fsw_tlm_layout(const fsw_tlm_t *t)
+{
+    return ((t != NULL) && (t->mission == FSW_MISSION_RENDEZVOUS)) ? FSW_TLM_RDV_LAYOUT_VERSION
+                                                                     : FSW_TLM_LAYOUT_VERSION;
+}
+
 uint32_t fsw_tlm_encode(const fsw_tlm_t *t, uint8_t *buf, uint32_t cap)
 {
     uint32_t n = 0u;
-    if ((t != NULL) && (buf != NULL) && (cap >= FSW_TLM_BYTES)) {
+    if ((t != NULL) && (t->mission == FSW_MISSION_RENDEZVOUS)) {
+        n = fsw_tlm_rdv_encode(t, buf, cap);
+    } else if ((t != NULL) && (buf != NULL) && (cap >= FSW_TLM_BYTES)) {
         fsw_wr_t w;
         uint32_t i;
         const uint32_t head[16] = {
@@ -49,6 +57,8 @@ uint32_t fsw_tlm_encode(const fsw_tlm_t *t, uint8_t *buf, uint32_t cap)
         if ((!w.err) && (w.pos == FSW_TLM_BYTES)) {
             n = w.pos;
         }
+    } else {
+        /* null arguments or too small a buffer: 0 */
     }
     return n;
 }

@@ -6,4 +6,5 @@ list(APPEND FSW_SOURCES
   app/fsw_obs_table.c
   app/fsw_exec.c
   app/fsw_tlm.c
+  app/fsw_tlm_rdv.c
 )

@@ -38,6 +38,9 @@ public:
     // One table-upload chunk, between steps. false: this backend takes no uploads (the bridge
     // then acks REJECTED itself). ack.result is the loader's verdict.
     virtual bool table_chunk(const TableChunk &, TableAck &) { return false; }
+    // One telecommand for the next step (the bridge calls it just before step()). false: this
+    // backend takes no such command (the bridge counts cmd_rej).
+    virtual bool command(const FswCommand &) { return false; }
 };
 
 }  // namespace bridge

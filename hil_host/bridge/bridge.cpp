@@ -30,6 +30,7 @@ Reply Bridge::on_frame(const Frame &in)
     Frame f = in;
     (void)val_.apply_ranges(f, counters_);
     be_.host_counters(counters_);
+    deliver_commands(f.seq);
     StepOutput so{};
     if (!be_.step(f, so)) {
         r.outcome = Outcome::BackendFailed;
@@ -60,6 +61,29 @@ Reply Bridge::on_frame(const Frame &in)
     }
     r.tlm.counters = counters_;
     return r;
+}
+
+bool Bridge::on_command(const FswCommand &c)
+{
+    if (cmdq_n_ >= kCmdQueue) {
+        sat_inc(counters_.cmd_rej);
+        return false;
+    }
+    cmdq_[cmdq_n_++] = c;
+    return true;
+}
+
+void Bridge::deliver_commands(std::int64_t seq)
+{
+    std::size_t keep = 0;
+    for (std::size_t i = 0; i < cmdq_n_; ++i) {
+        if (cmdq_[i].apply_seq <= seq) {
+            sat_inc(be_.command(cmdq_[i]) ? counters_.cmds : counters_.cmd_rej);
+        } else {
+            cmdq_[keep++] = cmdq_[i];
+        }
+    }
+    cmdq_n_ = keep;
 }
 
 TableAck Bridge::on_table(const TableChunk &c)

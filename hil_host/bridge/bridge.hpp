@@ -12,6 +12,9 @@
 //   Step / Gap                       -> ranges checked (last good + STALE bit), backend step,
 //                                       command k and telemetry k published
 //   backend refuses the step         -> nothing published, gate unchanged
+//   telecommand (on_command)         -> queued; handed to the backend just before the step of
+//                                       the first frame with seq >= apply_seq (cmds++), in
+//                                       arrival order; queue full or refused -> cmd_rej++
 #ifndef HIL_BRIDGE_BRIDGE_HPP
 #define HIL_BRIDGE_BRIDGE_HPP
 
@@ -49,6 +52,9 @@ public:
     Reply on_bytes(const std::uint8_t *buf, std::size_t len);   // encoded gnc::sensor_frame_t
     // One table chunk: forwarded to the backend between steps; table_rej counts refusals.
     TableAck on_table(const TableChunk &c);
+    // One telecommand, queued until the first frame with seq >= apply_seq (then handed to the
+    // backend before that step). false: refused (queue full: cmd_rej).
+    bool on_command(const FswCommand &c);
     // The plant's missed-command count (from its heartbeat/summary); stored as reported.
     void set_missed(std::int32_t n) { counters_.missed = (n < 0) ? 0 : n; }
     // For SiAdapter users: fold adapter counters (nonfinite_rej, range_rej, malformed) in.
@@ -58,10 +64,14 @@ public:
     const SeqGate &gate() const { return gate_; }
 
 private:
+    void deliver_commands(std::int64_t seq);
+
     Backend &be_;
     SeqGate gate_;
     FrameValidator val_;
     Counters counters_{};
+    FswCommand cmdq_[kCmdQueue] = {};   // in arrival order
+    std::size_t cmdq_n_ = 0;
 };
 
 }  // namespace bridge

@@ -66,6 +66,22 @@ struct TableAck {
     std::int32_t bytes_received = 0;
 };
 
+// Ground / test conductor -> flight software: one telecommand (gnc::fsw_cmd_t). The bridge
+// holds it until the first frame with seq >= apply_seq and hands it to the backend just before
+// that frame's step.
+constexpr std::size_t kCmdArgs = 8;
+constexpr std::size_t kCmdQueue = 16;     // telecommands held at once; more are refused (cmd_rej)
+constexpr std::int32_t kCmdMode = 1;      // fsw_cmd_t CMD_* (hil_host/lcmtypes/fsw_cmd_t.lcm)
+constexpr std::int32_t kCmdImpStart = 2;
+constexpr std::int32_t kCmdImpAbort = 3;
+constexpr std::int32_t kCmdImpClear = 4;
+struct FswCommand {
+    std::int64_t utime = 0;
+    std::int64_t apply_seq = 0;
+    std::int32_t cmd = 0;
+    std::int32_t args[kCmdArgs] = {};
+};
+
 // Cumulative bridge counters; every one saturates at INT32_MAX (fsw_tlm_frame_t comment).
 struct Counters {
     std::int32_t stepped = 0;        // backend steps (seq == last+1 or a gap)
@@ -78,6 +94,8 @@ struct Counters {
     std::int32_t malformed = 0;      // frames refused whole: undecodable, n_counts/period/seq bad
     std::int32_t missed = 0;         // missed commands reported by the plant
     std::int32_t table_rej = 0;      // table uploads refused (loader, module veto, or no uploads)
+    std::int32_t cmds = 0;           // telecommands handed to the flight software
+    std::int32_t cmd_rej = 0;        // telecommands refused by the bridge (queue full, unknown, no backend support)
 };
 
 // Bridge -> logger: telemetry of step k plus the counters.

@@ -4,10 +4,16 @@
 #include <stdexcept>
 
 extern "C" {
+#include "imp_tables.h"
 #include "obs_tables.h"
 }
 
 namespace bridge {
+
+static_assert(FSW_TC_IMP_START == static_cast<std::uint32_t>(kCmdImpStart) &&
+                  FSW_TC_IMP_ABORT == static_cast<std::uint32_t>(kCmdImpAbort) &&
+                  FSW_TC_IMP_CLEAR == static_cast<std::uint32_t>(kCmdImpClear),
+              "fsw_cmd_t CMD_IMP_* and FSW_TC_* must agree");
 
 namespace {
 
@@ -44,6 +50,14 @@ obs_params_t boot_obs_table(const std::string &name, double k_hat0_per_s2, doubl
     return p;
 }
 
+imp_params_t boot_imp_table(const std::string &name)
+{
+    if (name == "imp_default") { return IMP_TBL_DEFAULT; }
+    if (name == "imp_1s") { return IMP_TBL_1S; }
+    if (name == "imp_sub1ms") { return IMP_TBL_SUB1MS; }
+    throw std::invalid_argument("unknown impulse table '" + name + "'");
+}
+
 InProcessFswBackend::InProcessFswBackend(const obs_params_t &boot, std::uint32_t revision,
                                          std::uint16_t stale_max)
     : boot_(boot), revision_(revision), f_(new fsw_t())
@@ -51,6 +65,17 @@ InProcessFswBackend::InProcessFswBackend(const obs_params_t &boot, std::uint32_t
     cfg_.period_us = boot.period_us;
     cfg_.stale_max = stale_max;
     cfg_.boot_mode = FSW_MODE_DETUMBLE;
+    cfg_.mission = FSW_MISSION_DETUMBLE;
+    ok_ = reset();
+}
+
+InProcessFswBackend::InProcessFswBackend(const imp_params_t &boot_imp, std::uint32_t revision)
+    : boot_imp_(boot_imp), revision_(revision), f_(new fsw_t())
+{
+    cfg_.period_us = boot_imp.period_us;
+    cfg_.stale_max = 250u;   // not a SAFE trigger for nav (fsw_exec.c); kept for the checks
+    cfg_.boot_mode = FSW_MODE_RENDEZVOUS;
+    cfg_.mission = FSW_MISSION_RENDEZVOUS;
     ok_ = reset();
 }
 
@@ -58,13 +83,24 @@ bool InProcessFswBackend::reset()
 {
     *f_ = fsw_t{};
     out_ = fsw_out_t{};
-    ok_ = (fsw_init(f_.get(), &cfg_, &boot_, revision_) == FSW_OK);
+    ok_ = (cfg_.mission == FSW_MISSION_RENDEZVOUS) ? (fsw_init_rdv(f_.get(), &cfg_, &boot_imp_, revision_) == FSW_OK)
+                                                    : (fsw_init(f_.get(), &cfg_, &boot_, revision_) == FSW_OK);
     return ok_;
 }
 
 SensorLimits InProcessFswBackend::sensor_limits() const
 {
     SensorLimits l{};
+    if (cfg_.mission == FSW_MISSION_RENDEZVOUS) {
+        l.n_channels = static_cast<std::int16_t>(FSW_RDV_N_SENS);
+        l.period_us = static_cast<std::int32_t>(cfg_.period_us);
+        for (std::size_t i = 0; i < FSW_RDV_N_SENS; ++i) {
+            const std::int32_t m = (i < 3u) ? FSW_NAV_POS_MAX_MM : ((i < 6u) ? FSW_NAV_VEL_MAX_CNT : INT32_MAX);
+            l.ch[i].min = (i < 6u) ? -m : 0;
+            l.ch[i].max = m;
+        }
+        return l;
+    }
     l.n_channels = static_cast<std::int16_t>(FSW_N_SENS);
     l.period_us = static_cast<std::int32_t>(boot_.period_us);
     const std::int32_t m = (boot_.gyro_max_cnt > 0) ? (boot_.gyro_max_cnt - 1) : 0;
@@ -97,19 +133,40 @@ bool InProcessFswBackend::step(const Frame &f, StepOutput &out)
         if ((f.status[i] & kStatusSat) != 0) { st = static_cast<std::uint8_t>(st | FSW_ST_SAT); }
         in.status[i] = st;
     }
-    in.mode_cmd = FSW_CMD_NONE;
+    in.mode_cmd = mode_cmd_;
+    mode_cmd_ = FSW_CMD_NONE;
+    in.tc = tc_;
+    for (std::size_t i = 0; i < 8u; ++i) { in.tc_arg[i] = tc_arg_[i]; tc_arg_[i] = 0; }
+    tc_ = FSW_TC_NONE;
     in.host_missed = missed_;
     in.host_rejected = rejected_;
     fsw_step(f_.get(), &in, &out_);
 
     out = StepOutput{};
     out.n_counts = static_cast<std::int16_t>(out_.n_act);
-    for (std::size_t i = 0; i < FSW_N_ACT; ++i) { out.counts[i] = out_.act_cnt[i]; }
+    for (std::size_t i = 0; i < out_.n_act && i < kMaxCounts; ++i) { out.counts[i] = out_.act_cnt[i]; }
     out.fsw_mode = static_cast<std::int32_t>(out_.mode);
     out.fsw_health = out_.health;
-    out.tlm_layout_version = static_cast<std::int32_t>(FSW_TLM_LAYOUT_VERSION);
+    out.tlm_layout_version = static_cast<std::int32_t>(fsw_tlm_layout(&out_.tlm));
     out.tlm_len = static_cast<std::int16_t>(fsw_tlm_encode(&out_.tlm, out.tlm, static_cast<std::uint32_t>(kMaxTlm)));
     return true;
+}
+
+bool InProcessFswBackend::command(const FswCommand &c)
+{
+    // The executive checks the target mode itself (refused ones are counted in its telemetry);
+    // here only a negative value, which has no uint32 meaning, is refused.
+    if (c.cmd == kCmdMode && c.args[0] >= 0) {
+        mode_cmd_ = static_cast<std::uint32_t>(c.args[0]);
+        return true;
+    }
+    // Module telecommands go to the executive, which refuses them outside the mission mode.
+    if (c.cmd == kCmdImpStart || c.cmd == kCmdImpAbort || c.cmd == kCmdImpClear) {
+        tc_ = static_cast<std::uint32_t>(c.cmd);   // FSW_TC_* share the fsw_cmd_t values
+        for (std::size_t i = 0; i < 8u; ++i) { tc_arg_[i] = c.args[i]; }
+        return true;
+    }
+    return false;
 }
 
 bool InProcessFswBackend::table_chunk(const TableChunk &c, TableAck &ack)

@@ -136,4 +136,25 @@ bool decode_command(const std::uint8_t *buf, std::size_t len, Command &c)
     return decode_any(buf, len, m) && from_lcm(m, c);
 }
 
+void to_lcm(const FswCommand &c, gnc::fsw_cmd_t &m)
+{
+    m.utime = c.utime;
+    m.apply_seq = c.apply_seq;
+    m.cmd = c.cmd;
+    for (std::size_t i = 0; i < kCmdArgs; ++i) { m.args[i] = c.args[i]; }
+}
+
+bool decode_fsw_cmd(const std::uint8_t *buf, std::size_t len, FswCommand &c)
+{
+    gnc::fsw_cmd_t m{};
+    if (!decode_any(buf, len, m)) {
+        return false;
+    }
+    c.utime = m.utime;
+    c.apply_seq = m.apply_seq;
+    c.cmd = m.cmd;
+    for (std::size_t i = 0; i < kCmdArgs; ++i) { c.args[i] = m.args[i]; }
+    return true;
+}
+
 }  // namespace bridge

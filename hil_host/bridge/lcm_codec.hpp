@@ -9,6 +9,7 @@
 
 #include "bridge_types.hpp"
 #include "gnc/actuator_cmd_t.hpp"
+#include "gnc/fsw_cmd_t.hpp"
 #include "gnc/fsw_tlm_frame_t.hpp"
 #include "gnc/sensor_frame_t.hpp"
 
@@ -27,6 +28,8 @@ int encode(const gnc::fsw_tlm_frame_t &m, std::uint8_t *buf, std::size_t cap);
 
 bool decode_frame(const std::uint8_t *buf, std::size_t len, Frame &f);
 bool decode_command(const std::uint8_t *buf, std::size_t len, Command &c);
+void to_lcm(const FswCommand &c, gnc::fsw_cmd_t &m);
+bool decode_fsw_cmd(const std::uint8_t *buf, std::size_t len, FswCommand &c);
 
 }  // namespace bridge
 

@@ -19,6 +19,7 @@ BridgeNode::BridgeNode(lcm_t *lcm, bridge::Bridge &core) : lcm_(lcm), core_(core
     subs_[0] = lcm_subscribe(lcm_, kChSensor, &BridgeNode::on_sensor_cb, this);
     subs_[1] = lcm_subscribe(lcm_, kChTblUp, &BridgeNode::on_table_cb, this);
     subs_[2] = lcm_subscribe(lcm_, kChCtl, &BridgeNode::on_ctl_cb, this);
+    subs_[3] = lcm_subscribe(lcm_, kChFswCmd, &BridgeNode::on_fsw_cmd_cb, this);
 }
 
 BridgeNode::~BridgeNode()
@@ -77,6 +78,17 @@ void BridgeNode::on_table_cb(const lcm_recv_buf_t *rb, const char *, void *user)
     ack.bytes_received = a.bytes_received;
     const int n = ack.encode(self->buf_.data(), 0, static_cast<int>(self->buf_.size()));
     if (n > 0) { lcm_publish(self->lcm_, kChTblAck, self->buf_.data(), static_cast<unsigned>(n)); }
+}
+
+void BridgeNode::on_fsw_cmd_cb(const lcm_recv_buf_t *rb, const char *, void *user)
+{
+    auto *self = static_cast<BridgeNode *>(user);
+    bridge::FswCommand c{};
+    if (!bridge::decode_fsw_cmd(static_cast<const std::uint8_t *>(rb->data), rb->data_size, c)) {
+        bridge::sat_inc(self->core_.counters_mut().cmd_rej);
+        return;
+    }
+    (void)self->core_.on_command(c);
 }
 
 void BridgeNode::on_ctl_cb(const lcm_recv_buf_t *rb, const char *, void *user)

@@ -1,5 +1,5 @@
 // bridge_node.hpp — the LCM shell around bridge::Bridge (hil_host/bridge): decode, hand to the
-// core, publish what the core says. Subscribes GNC_SENSOR, GNC_TBL_UP, GNC_CTL; publishes
+// core, publish what the core says. Subscribes GNC_SENSOR, GNC_TBL_UP, GNC_CTL, GNC_FSW_CMD; publishes
 // GNC_CMD, GNC_TLM, GNC_TBL_ACK (never a channel it subscribes to: udpm loops them back).
 #ifndef HIL_SIL_BRIDGE_NODE_HPP
 #define HIL_SIL_BRIDGE_NODE_HPP
@@ -31,11 +31,12 @@ private:
     static void on_sensor_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
     static void on_table_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
     static void on_ctl_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
+    static void on_fsw_cmd_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
     void publish_ready();
 
     lcm_t *lcm_;
     bridge::Bridge &core_;
-    lcm_subscription_t *subs_[3] = {nullptr, nullptr, nullptr};
+    lcm_subscription_t *subs_[4] = {nullptr, nullptr, nullptr, nullptr};
     std::vector<std::uint8_t> buf_;
     bool stopped_ = false;
     std::uint64_t frames_ = 0;

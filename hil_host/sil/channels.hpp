@@ -12,6 +12,7 @@ constexpr const char *kChTruth = "GNC_TRUTH";     // sim_truth_t      plant  -> 
 constexpr const char *kChCtl = "GNC_CTL";         // sil_ctl_t        runner <-> nodes
 constexpr const char *kChTblUp = "GNC_TBL_UP";    // table_upload_t   tools  -> bridge
 constexpr const char *kChTblAck = "GNC_TBL_ACK";  // table_ack_t      bridge -> tools
+constexpr const char *kChFswCmd = "GNC_FSW_CMD";  // fsw_cmd_t        ground -> bridge
 
 }  // namespace sil
 

@@ -1,10 +1,12 @@
 #include "metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "channels.hpp"
+#include "tlm_rdv_fields.hpp"
 #include "gnc/actuator_cmd_t.hpp"
 #include "gnc/fsw_tlm_frame_t.hpp"
 #include "gnc/sim_truth_t.hpp"
@@ -39,6 +41,22 @@ const F kTlm[] = {
 
 bool decode_fsw_tlm(const std::uint8_t *buf, std::size_t len, std::map<std::string, std::int64_t> &out)
 {
+    if (len == kTlmRdvBytes) {   // RENDEZVOUS layout (generated table, tools/sil/gen_tlm_rdv.py)
+        fsw_rd_t r;
+        fsw_rd_init(&r, buf, static_cast<std::uint32_t>(len));
+        for (const TlmField &f : kTlmRdv) {
+            std::int64_t v = 0;
+            switch (f.t) {
+            case 'q': v = fsw_rd_i64(&r); break;
+            case 'u': v = static_cast<std::int64_t>(fsw_rd_u32(&r)); break;
+            case 'i': v = fsw_rd_i32(&r); break;
+            case 'h': v = static_cast<std::int64_t>(fsw_rd_u16(&r)); break;
+            default: v = static_cast<std::int64_t>(fsw_rd_u8(&r)); break;
+            }
+            out[f.name] = v;
+        }
+        return !r.err && r.pos == len;
+    }
     if (len != FSW_TLM_BYTES) {
         return false;
     }
@@ -69,6 +87,76 @@ MetricsTap::~MetricsTap()
     }
 }
 
+void MetricsTap::set_rendezvous(std::int64_t t0_step, std::int64_t tf_step)
+{
+    m_.rdv = true;
+    m_.t0_step = t0_step;
+    m_.tf_step = tf_step;
+}
+
+namespace {
+
+// Truth of the CW plant (sim/plant/cw_sil_plant.hpp): state[0..5] x, x', y, y', z, z';
+// state[6..11] delta-v per thruster; state[12] interlock violations.
+void rdv_truth(Metrics &m, const gnc::sim_truth_t &t)
+{
+    if (t.seq == m.tf_step) {
+        m.at_tf = true;
+        m.miss_r_m = std::sqrt(t.state[0] * t.state[0] + t.state[2] * t.state[2] + t.state[4] * t.state[4]);
+        m.miss_v_mps = std::sqrt(t.state[1] * t.state[1] + t.state[3] * t.state[3] + t.state[5] * t.state[5]);
+        for (int a = 0; a < 3; ++a) { m.miss_xyz_m[a] = t.state[2 * a]; }
+    }
+    m.dv_used_mps = 0.0;
+    for (int j = 0; j < 6; ++j) {
+        m.dv_thr_mps[j] = t.state[6 + j];
+        m.dv_used_mps += t.state[6 + j];
+    }
+    m.violations = t.state[12];
+    m.omega_radps = t.extra[0];
+    m.a_nom_mps2 = t.extra[1];
+}
+
+const char *const kImpFlags[] = {"INFEASIBLE", "NO_SOLUTION", "MARGINAL", "NAV_STALE", "THRUST_LEVEL",
+                                 "EXPECTED_MISS", "INTERLOCK"};   // IMP_H_* bits 12..18
+const char *const kImpModes[] = {"IDLE", "PLANNING", "ARMED", "FIRING", "FINAL", "DONE",
+                                 "INFEASIBLE_MODE", "NO_SOLUTION_MODE", "ABORTED", "FAULT"};
+
+void rdv_tlm(Metrics &m, std::map<std::string, std::int64_t> &d, double ts)
+{
+    const auto h = static_cast<std::uint32_t>(d["imp_health"]);
+    m.imp_health_sticky |= h;
+    for (std::uint32_t b = 0; b < 7u; ++b) {
+        if ((h & (IMP_H_INFEASIBLE << b)) != 0u && m.t_first.count(kImpFlags[b]) == 0u) {
+            m.t_first[kImpFlags[b]] = ts;
+        }
+    }
+    if ((h & IMP_H_STUCK_OFF) != 0u && m.t_first.count("STUCK_OFF") == 0u) { m.t_first["STUCK_OFF"] = ts; }
+    if ((h & IMP_H_STUCK_ON) != 0u && m.t_first.count("STUCK_ON") == 0u) { m.t_first["STUCK_ON"] = ts; }
+    m.max_iters_xy = std::max(m.max_iters_xy, static_cast<std::uint32_t>(d["imp_iters_xy"]));
+    m.max_iters_z = std::max(m.max_iters_z, static_cast<std::uint32_t>(d["imp_iters_z"]));
+    const auto mode = static_cast<std::uint32_t>(d["imp_mode"]);
+    // The START plan's delta-v: a_nom * sum over the axes of (T1 + T - T2), from the first
+    // telemetry that shows the committed plan (ARMED), T = t_f - t0.
+    if (mode == IMP_MODE_ARMED && m.plan_dv_mps < 0.0 && m.omega_radps > 0.0 && m.t0_step >= 0) {
+        const double dt = (m.truth_n > 1) ? (m.t_last_s / static_cast<double>(m.truth_n - 1)) : 0.0;
+        const double T = static_cast<double>(m.tf_step - m.t0_step) * dt;
+        double s = 0.0;
+        for (const char *ax : {"x", "y", "z"}) {
+            const double t1 = static_cast<double>(d[std::string("imp_t1_") + ax]) / 536870912.0 / m.omega_radps;
+            const double t2 = static_cast<double>(d[std::string("imp_t2_") + ax]) / 536870912.0 / m.omega_radps;
+            s += t1 + T - t2;
+        }
+        m.plan_dv_mps = m.a_nom_mps2 * s;
+    }
+    if (mode < 10u) {
+        m.imp_modes_seen |= 1u << mode;
+        if (m.t_first.count(kImpModes[mode]) == 0u) { m.t_first[kImpModes[mode]] = ts; }
+    }
+    m.imp_mode_final = mode;
+}
+
+}  // namespace
+
 void MetricsTap::on_truth(const lcm_recv_buf_t *rb, const char *, void *user)
 {
     auto *self = static_cast<MetricsTap *>(user);
@@ -77,6 +165,12 @@ void MetricsTap::on_truth(const lcm_recv_buf_t *rb, const char *, void *user)
         return;
     }
     Metrics &m = self->m_;
+    if (m.rdv) {
+        rdv_truth(m, t);
+        m.t_last_s = static_cast<double>(t.utime) * 1e-6;
+        ++m.truth_n;
+        return;
+    }
     const double ts = static_cast<double>(t.utime) * 1e-6;
     if (m.truth_n == 1) {
         m.h_s = ts - m.t_last_s;
@@ -106,8 +200,12 @@ void MetricsTap::on_cmd(const lcm_recv_buf_t *rb, const char *, void *user)
     if (c.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0) {
         return;
     }
-    for (int i = 0; i < 2 && i < c.n_counts; ++i) {
-        self->m_.peak_bdot_degs = std::fmax(self->m_.peak_bdot_degs, std::fabs(c.counts[i] * kActLsb) / kDeg);
+    if (self->m_.rdv) {
+        if (c.n_counts > 12 && c.counts[12] != 0) { ++self->m_.thr_on_steps; }
+    } else {
+        for (int i = 0; i < 2 && i < c.n_counts; ++i) {
+            self->m_.peak_bdot_degs = std::fmax(self->m_.peak_bdot_degs, std::fabs(c.counts[i] * kActLsb) / kDeg);
+        }
     }
     ++self->m_.cmd_n;
 }
@@ -127,6 +225,9 @@ void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
         return;
     }
     m.tlm = d;
+    if (m.rdv) {
+        rdv_tlm(m, d, static_cast<double>(f.utime) * 1e-6);
+    }
     m.k_hat_final = 0.01 * static_cast<double>(d["obs_kappa"]) / 268435456.0;
     m.obs_health_sticky |= static_cast<std::uint32_t>(d["obs_health"]);
     if (m.t_persist_s < 0.0 && (static_cast<std::uint32_t>(d["obs_health"]) & OBS_H_CMD_LIMIT_PERSIST) != 0u) {
@@ -162,6 +263,32 @@ std::string MetricsTap::summary() const
         std::snprintf(b, sizeof b, fmt, v);
         o << k << " = " << b << "\n";
     };
+    if (m_.rdv) {
+        line("miss_r_m", m_.miss_r_m, "%.4f");
+        line("miss_v_mps", m_.miss_v_mps, "%.6f");
+        line("dv_used_mps", m_.dv_used_mps, "%.4f");
+        line("plan_dv_mps", m_.plan_dv_mps, "%.4f");
+        line("max_iters_xy", m_.max_iters_xy, "%.0f");
+        line("max_iters_z", m_.max_iters_z, "%.0f");
+        line("interlock_violations", m_.violations, "%.0f");
+        o << "t_f_step = " << m_.tf_step << "\nthruster_on_steps = " << m_.thr_on_steps << "\nsteps_truth = " << m_.truth_n
+          << "\nsteps_tlm = " << m_.tlm_n << "\n";
+        for (const auto &kv : m_.bridge) { o << "bridge_" << kv.first << " = " << kv.second << "\n"; }
+        for (const char *k : {"mode", "n_chan_rej", "n_tc", "n_tc_rej", "n_safe", "host_missed", "imp_mode", "imp_plans",
+                              "imp_plans_failed", "imp_plans_late", "imp_plans_skipped", "imp_plans_kept", "imp_cmd_rej",
+                              "imp_rej_reason", "imp_nav_rej", "imp_cal_rej", "imp_iters_xy", "imp_iters_z",
+                              "imp_how_xy", "imp_how_z", "imp_pattern", "imp_fres_xy", "imp_fres_z", "imp_stuck_j"}) {
+            auto it = m_.tlm.find(k);
+            o << "fsw_" << k << " = " << (it == m_.tlm.end() ? 0 : it->second) << "\n";
+        }
+        std::snprintf(b, sizeof b, "0x%08x", m_.imp_health_sticky);
+        o << "imp_health_sticky = " << b << "\n";
+        for (const auto &kv : m_.t_first) {
+            std::snprintf(b, sizeof b, "%.1f", kv.second);
+            o << "t_first_" << kv.first << " = " << b << "\n";
+        }
+        return o.str();
+    }
     line("t_s_s", m_.t_s, "%.2f");
     line("t_s_plus_s", m_.t_s_plus, "%.2f");
     line("k_hat_final_per_s2", m_.k_hat_final, "%.6f");

@@ -35,12 +35,32 @@ struct Metrics {
     std::map<std::string, std::int64_t> tlm;      // last decoded fsw_tlm_t fields (raw)
     std::map<std::string, std::int64_t> bridge;   // last bridge counters of fsw_tlm_frame_t
     std::uint64_t tlm_bad = 0;                    // frames whose tlm failed to decode
+    // Rendezvous (plant cw, spec 50 §7): truth at t_f, delta-v, thruster activity, event times.
+    bool rdv = false;
+    std::int64_t tf_step = -1;                    // from the scenario's IMP_START
+    bool at_tf = false;                           // a truth sample at t_f was seen
+    double miss_r_m = -1.0, miss_v_mps = -1.0;    // |dR|, |dV| at t_f (target at the origin)
+    double miss_xyz_m[3] = {0, 0, 0};
+    double dv_used_mps = 0.0;                     // sum over the thrusters (truth)
+    double dv_thr_mps[6] = {0, 0, 0, 0, 0, 0};
+    double violations = 0.0;                      // interlock violations seen by the plant
+    std::uint64_t thr_on_steps = 0;               // commands with any thruster on
+    std::uint32_t imp_health_sticky = 0;
+    std::uint32_t imp_mode_final = 0;
+    std::uint32_t imp_modes_seen = 0;             // bit m: IMP_MODE m seen
+    std::map<std::string, double> t_first;        // first time of an impulse health flag / mode
+    double omega_radps = 0.0, a_nom_mps2 = 0.0;   // from the plant's truth
+    std::int64_t t0_step = -1;
+    double plan_dv_mps = -1.0;                    // the START plan's delta-v (first ARMED telemetry)
+    std::uint32_t max_iters_xy = 0, max_iters_z = 0;
 };
 
 class MetricsTap {
 public:
     // tail_from_s: samples at t >= tail_from_s feed the "tail" maxima (e.g. duration - 20).
     MetricsTap(lcm_t *lcm, double tail_from_s);
+    // Rendezvous metrics: the terminal miss at step tf_step (the plant's k of t_f).
+    void set_rendezvous(std::int64_t t0_step, std::int64_t tf_step);
     ~MetricsTap();
     MetricsTap(const MetricsTap &) = delete;
     MetricsTap &operator=(const MetricsTap &) = delete;

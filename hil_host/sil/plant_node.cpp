@@ -7,9 +7,11 @@
 
 #include "channels.hpp"
 #include "gnc/actuator_cmd_t.hpp"
+#include "gnc/fsw_cmd_t.hpp"
 #include "gnc/sensor_frame_t.hpp"
 #include "gnc/sil_ctl_t.hpp"
 #include "gnc/sim_truth_t.hpp"
+#include "plant/make_plant.hpp"
 #include "sensors/gyro.hpp"
 
 namespace sil {
@@ -45,7 +47,7 @@ int ms_left(Clock::time_point until)
 }  // namespace
 
 PlantNode::PlantNode(lcm_t *lcm, const sim::Scenario &scn, bool sync)
-    : lcm_(lcm), scn_(scn), sync_(sync), plant_(scn), inj_(fault_config(scn.faults)), buf_(4096)
+    : lcm_(lcm), scn_(scn), sync_(sync), plant_(sim::make_plant(scn)), inj_(fault_config(scn.faults)), buf_(4096)
 {
     if (lcm_ == nullptr) {
         throw std::invalid_argument("PlantNode: null lcm_t");
@@ -110,10 +112,10 @@ void PlantNode::on_cmd(const std::uint8_t *buf, std::size_t len)
 void PlantNode::inject_sensor_faults(sim::SensorFrame &f, double t_s)
 {
     if (in_window(scn_.faults.gyro_nan_s, t_s)) {
-        // The plant's NaN goes through the one SI -> count conversion, as a diverging model would.
+        // A NaN truth on channel 0 goes through the one SI -> count conversion, as a diverging
+        // model would (count 0, NonFinite and SAT: the bridge receives it marked STALE).
         std::uint8_t st = 0u;
-        f.cnt[0] = sim::counts_from_si(std::numeric_limits<double>::quiet_NaN(), scn_.gyro.lsb_radps(),
-                                       scn_.gyro.max_cnt, &st);
+        f.cnt[0] = sim::counts_from_si(std::numeric_limits<double>::quiet_NaN(), 1.0, 1, &st);
         f.status[0] = st;
         ++sum_.nan_frames;
     }
@@ -134,7 +136,9 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
         m.counts[i] = (i < f.n_ch) ? f.cnt[i] : 0;
         std::int8_t st = 0;
         if (i < f.n_ch) {
-            if ((f.status[i] & sim::kStatusNonFinite) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_STALE); }
+            if ((f.status[i] & (sim::kStatusNonFinite | sim::kStatusInvalid)) != 0u) {
+                st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_STALE);
+            }
             if ((f.status[i] & sim::kStatusSat) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_SAT); }
         }
         m.status[i] = st;
@@ -162,18 +166,14 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
 void PlantNode::publish_truth(std::uint64_t k)
 {
     gnc::sim_truth_t m{};
-    m.utime = plant_.utime_us();
+    m.utime = plant_->utime_us();
     m.seq = static_cast<std::int64_t>(k);
-    const std::vector<double> t = plant_.truth();   // w, mu.. (6), beta (2), bdot applied (2)
-    for (std::size_t i = 0; i < 8u && i < t.size(); ++i) {
-        m.state[i] = t[i];
-    }
-    m.extra[0] = scn_.k2_true_per_s2;
-    m.extra[1] = t.size() > 8u ? t[8] : 0.0;
-    m.extra[2] = t.size() > 9u ? t[9] : 0.0;
-    m.extra[3] = static_cast<double>(scn_.sigma);
-    m.extra[4] = scn_.j_factor;
-    m.events = static_cast<std::int32_t>(plant_.events().size() > 0x7FFFFFFF ? 0x7FFFFFFF : plant_.events().size());
+    std::array<double, 16> st{};
+    std::array<double, 8> ex{};
+    plant_->truth_message(st, ex);
+    for (std::size_t i = 0; i < 16u; ++i) { m.state[i] = st[i]; }
+    for (std::size_t i = 0; i < 8u; ++i) { m.extra[i] = ex[i]; }
+    m.events = static_cast<std::int32_t>(plant_->events().size() > 0x7FFFFFFF ? 0x7FFFFFFF : plant_->events().size());
     const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
     if (n > 0) {
         lcm_publish(lcm_, kChTruth, buf_.data(), static_cast<unsigned>(n));
@@ -183,7 +183,7 @@ void PlantNode::publish_truth(std::uint64_t k)
 void PlantNode::publish_ctl(std::int32_t command, std::int32_t status)
 {
     gnc::sil_ctl_t m{};
-    m.utime = plant_.utime_us();
+    m.utime = plant_->utime_us();
     m.command = command;
     for (std::size_t i = 0; i < 32u; ++i) {
         m.scenario[i] = (i < scn_.name.size()) ? static_cast<std::uint8_t>(scn_.name[i]) : 0u;
@@ -194,6 +194,22 @@ void PlantNode::publish_ctl(std::int32_t command, std::int32_t status)
     const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
     if (n > 0) {
         lcm_publish(lcm_, kChCtl, buf_.data(), static_cast<unsigned>(n));
+    }
+}
+
+void PlantNode::publish_commands(std::uint64_t k, double t_s)
+{
+    while (next_cmd_ < scn_.commands.size() && scn_.commands[next_cmd_].t_s <= t_s + 1e-9) {
+        const sim::ScnCommand &c = scn_.commands[next_cmd_++];
+        gnc::fsw_cmd_t m{};
+        m.utime = plant_->utime_us();
+        m.apply_seq = static_cast<std::int64_t>(k);
+        m.cmd = c.cmd;
+        for (std::size_t i = 0; i < 8u; ++i) { m.args[i] = c.args[i]; }
+        const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
+        if (n > 0) {
+            lcm_publish(lcm_, kChFswCmd, buf_.data(), static_cast<unsigned>(n));
+        }
     }
 }
 
@@ -251,35 +267,37 @@ bool PlantNode::wait_command(std::uint64_t k, const sim::SensorFrame &f)
 
 PlantSummary PlantNode::run()
 {
-    plant_.reset(scn_);
+    plant_->reset(scn_);
     sum_ = PlantSummary{};
+    next_cmd_ = 0;
     const std::uint64_t n = scn_.n_steps();
     publish_ctl(gnc::sil_ctl_t::CMD_START, 0);
     for (k_ = 0; k_ < n; ++k_) {
-        const double t_s = static_cast<double>(plant_.utime_us()) * 1e-6;
+        const double t_s = static_cast<double>(plant_->utime_us()) * 1e-6;
         if (before_frame_) {
-            before_frame_(k_, plant_.utime_us());
+            before_frame_(k_, plant_->utime_us());
         }
-        sim::SensorFrame f = plant_.sense();
+        publish_commands(k_, t_s);
+        sim::SensorFrame f = plant_->sense();
         inject_sensor_faults(f, t_s);
         publish_truth(k_);
         got_ = false;
         publish_frame(f, 0, true);
         if (wait_command(k_, f)) {
-            plant_.apply(cmd_);
+            plant_->apply(cmd_);
         } else {
             ++sum_.missed;   // the last command stays applied (spec 00 §5.2 step 4)
             publish_ctl(gnc::sil_ctl_t::CMD_HEARTBEAT,
                         static_cast<std::int32_t>(sum_.missed > 0x7FFFFFFFu ? 0x7FFFFFFFu : sum_.missed));
         }
-        const sim::RunState st = plant_.propagate();
+        const sim::RunState st = plant_->propagate();
         ++sum_.steps;
         if (progress_) {
             progress_(k_ + 1, n);
         }
         if (st == sim::RunState::Diverged) {
             sum_.diverged = true;
-            sum_.reason = "DIVERGED: " + plant_.diverged_reason();
+            sum_.reason = "DIVERGED: " + plant_->diverged_reason();
             ++k_;
             break;
         }
@@ -294,7 +312,7 @@ PlantSummary PlantNode::run()
         }
     }
     sum_.faults = inj_.counters();
-    sum_.t_end_s = static_cast<double>(plant_.utime_us()) * 1e-6;
+    sum_.t_end_s = static_cast<double>(plant_->utime_us()) * 1e-6;
     publish_ctl(gnc::sil_ctl_t::CMD_STOP, sum_.diverged ? 1 : 0);
     if (sync_) {
         while (lcm_handle_timeout(lcm_, 0) > 0) {

@@ -11,7 +11,10 @@
 //         up to lockstep.retx_max times, then the command is missed. Fully deterministic.
 //   async (udpm, separate processes): wall-clock retx_ms / deadline_ms of the scenario.
 // Missed commands are announced on GNC_CTL (HEARTBEAT from NODE_PLANT, status = missed count)
-// before the next frame, so the bridge reports them in telemetry.
+// before the next frame, so the bridge reports them in telemetry. The scenario's telecommands
+// (its `commands:` list, the test conductor) go out on GNC_FSW_CMD before the first frame at or
+// after their time, with apply_seq = that frame's seq. The plant itself is whatever the
+// scenario names (sim::make_plant).
 #ifndef HIL_SIL_PLANT_NODE_HPP
 #define HIL_SIL_PLANT_NODE_HPP
 
@@ -23,7 +26,9 @@
 #include <lcm/lcm.h>
 
 #include "fault_injector.hpp"
-#include "plant/sail_plant.hpp"
+#include <memory>
+
+#include "plant/plant.hpp"
 #include "scenario/scenario.hpp"
 
 namespace sil {
@@ -59,7 +64,7 @@ public:
     // async only: wait up to timeout_ms for the bridge's READY. false: none came.
     bool wait_for_bridge(int timeout_ms);
     PlantSummary run();
-    std::int64_t utime_us() const { return plant_.utime_us(); }
+    std::int64_t utime_us() const { return plant_->utime_us(); }
 
 private:
     static void on_cmd_cb(const lcm_recv_buf_t *rb, const char *ch, void *user);
@@ -70,11 +75,13 @@ private:
     void publish_ctl(std::int32_t command, std::int32_t status);
     bool wait_command(std::uint64_t k, const sim::SensorFrame &f);
     void inject_sensor_faults(sim::SensorFrame &f, double t_s);
+    void publish_commands(std::uint64_t k, double t_s);
+    std::size_t next_cmd_ = 0;      // scenario commands published so far
 
     lcm_t *lcm_;
     sim::Scenario scn_;
     bool sync_;
-    sim::SailPlant plant_;
+    std::unique_ptr<sim::Plant> plant_;
     fault::FaultInjector inj_;
     lcm_subscription_t *sub_cmd_ = nullptr;
     lcm_subscription_t *sub_ctl_ = nullptr;

@@ -194,10 +194,8 @@ int main(int argc, char **argv)
             lcm_t *lcm = create_or_exit(url);
             int rc = 1;
             {   // the node unsubscribes in its destructor: it must go before lcm_destroy
-                const obs_params_t boot =
-                    bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
-                bridge::InProcessFswBackend be(boot);
-                bridge::Bridge core(be, be.sensor_limits());
+                std::unique_ptr<bridge::InProcessFswBackend> be = sil::make_fixed_backend(scn);
+                bridge::Bridge core(*be, be->sensor_limits());
                 sil::BridgeNode bn(lcm, core);
                 rc = bn.serve(idle_ms);
                 std::fprintf(stderr, "sil bridge: %s after %llu frames\n", rc == 0 ? "STOP" : "idle timeout",
@@ -212,6 +210,7 @@ int main(int argc, char **argv)
             {
                 sil::PlantNode pn(lcm, scn, false);
                 sil::MetricsTap mt(lcm, scn.duration_s - 20.0);
+                sil::configure_metrics(mt, scn);
                 if (!pn.wait_for_bridge(ready_ms)) {
                     std::fprintf(stderr, "sil plant: no bridge READY on %s within %d ms\n", url.c_str(), ready_ms);
                     lcm_destroy(lcm);

@@ -60,6 +60,54 @@ FswKind fsw_kind(const std::string &name)
     throw std::invalid_argument("unknown flight software '" + name + "' (fixed, ref, ref-per-axis)");
 }
 
+void configure_metrics(MetricsTap &mt, const sim::Scenario &scn)
+{
+    if (scn.plant != "cw") {
+        return;
+    }
+    std::int64_t t0 = -1, tf = -1;
+    for (const sim::ScnCommand &c : scn.commands) {
+        if (c.cmd == bridge::kCmdImpStart && tf < 0) {
+            t0 = c.args[0];
+            tf = c.args[1];
+        }
+    }
+    mt.set_rendezvous(t0, tf);
+}
+
+namespace {
+
+std::unique_ptr<bridge::Backend> make_ref_backend(const sim::Scenario &scn, FswKind kind)
+{
+    if (scn.plant == "cw") {
+        throw std::invalid_argument("no reference FSW backend for plant cw in this build");
+    }
+    const obs_params_t t = bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
+    return std::unique_ptr<bridge::Backend>(new bridge::RefObsBackend(t, kind == FswKind::RefPerAxis));
+}
+
+}  // namespace
+
+std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn)
+{
+    std::unique_ptr<bridge::InProcessFswBackend> be;
+    std::uint32_t period = 0u;
+    if (scn.plant == "cw") {
+        const imp_params_t t = bridge::boot_imp_table(scn.fsw.table);
+        period = t.period_us;
+        be.reset(new bridge::InProcessFswBackend(t));
+    } else {
+        const obs_params_t t = bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
+        period = t.period_us;
+        be.reset(new bridge::InProcessFswBackend(t));
+    }
+    if (period != scn.period_us) {
+        throw std::runtime_error("scenario period_us " + std::to_string(scn.period_us) + " != table " +
+                                 scn.fsw.table + " period " + std::to_string(period));
+    }
+    return be;
+}
+
 InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
 {
     lcm_t *lcm = lcm_create(opt.url.c_str());
@@ -67,20 +115,14 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
         throw std::runtime_error("lcm_create failed for URL '" + opt.url + "'");
     }
     InprocResult res;
-    {
-        const obs_params_t boot = bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
-        if (boot.period_us != scn.period_us) {
-            lcm_destroy(lcm);
-            throw std::runtime_error("scenario period_us " + std::to_string(scn.period_us) + " != table " +
-                                     scn.fsw.table + " period " + std::to_string(boot.period_us));
-        }
-        bridge::InProcessFswBackend fixed(boot);
+    try {
+        std::unique_ptr<bridge::InProcessFswBackend> fixed = make_fixed_backend(scn);
         std::unique_ptr<bridge::Backend> refbe;
         if (opt.fsw != FswKind::Fixed) {
-            refbe.reset(new bridge::RefObsBackend(boot, opt.fsw == FswKind::RefPerAxis));
+            refbe = make_ref_backend(scn, opt.fsw);
         }
-        bridge::Backend &be = refbe ? *refbe : static_cast<bridge::Backend &>(fixed);
-        bridge::Bridge core(be, fixed.sensor_limits());
+        bridge::Backend &be = refbe ? *refbe : static_cast<bridge::Backend &>(*fixed);
+        bridge::Bridge core(be, fixed->sensor_limits());
         BridgeNode bn(lcm, core);
         const bool sync = opt.url.rfind("memq://", 0) == 0;
         PlantNode pn(lcm, scn, sync);
@@ -89,6 +131,7 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
             tap.reset(new LogTap(lcm, opt.log_path, [&pn]() { return pn.utime_us(); }));
         }
         MetricsTap mt(lcm, scn.duration_s - 20.0);
+        configure_metrics(mt, scn);
         std::vector<bool> sent(opt.uploads.size(), false);
         pn.set_before_frame([&](std::uint64_t, std::int64_t utime) {
             for (std::size_t i = 0; i < opt.uploads.size(); ++i) {
@@ -129,6 +172,9 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
           << plant_summary(res.plant) << mt.summary() << "wall_s = " << res.wall_s << "\nsteps_per_s = "
           << (res.wall_s > 0.0 ? static_cast<double>(res.plant.steps) / res.wall_s : 0.0) << "\n";
         res.summary = o.str();
+    } catch (...) {
+        lcm_destroy(lcm);
+        throw;
     }
     lcm_destroy(lcm);
     return res;

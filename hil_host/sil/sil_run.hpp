@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bridge_types.hpp"
+#include "fsw_backend.hpp"
 #include "metrics.hpp"
 #include "plant_node.hpp"
 #include "scenario/scenario.hpp"
@@ -48,10 +49,19 @@ struct InprocResult {
 
 InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt);
 
+// The fixed-point flight software for a scenario: the executive with the boot table the
+// scenario names (observer for plant sail, impulse scheduler for plant cw). Throws when the
+// table's period differs from the scenario's.
+std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn);
+
 // Publishes one table image in chunks on GNC_TBL_UP.
 void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us);
 
 std::string plant_summary(const PlantSummary &p);
+
+// The metrics tap for a scenario (rendezvous metrics for plant cw, at the t_f of its first
+// IMP_START command).
+void configure_metrics(MetricsTap &mt, const sim::Scenario &scn);
 
 }  // namespace sil
 

@@ -19,11 +19,12 @@
 namespace sim {
 
 // Fixed-size channel arrays mirror the LCM types (fixed arrays only, spec 00 §5.1).
-constexpr std::size_t kMaxChannels = 8u;
+constexpr std::size_t kMaxChannels = 16u;
 
 // Per-channel sensor status bits.
 constexpr std::uint8_t kStatusSat = 0x01u;        // count at full scale (true value may be beyond it)
 constexpr std::uint8_t kStatusNonFinite = 0x02u;  // truth was NaN/Inf; the count is 0 and SAT is also set
+constexpr std::uint8_t kStatusInvalid = 0x04u;    // the sensor delivered no valid sample (dropout, out of range)
 
 struct SensorFrame {
     std::int64_t utime_us = 0;     // t_k
@@ -78,6 +79,9 @@ public:
     virtual const std::vector<TruthEvent> &events() const = 0;
     // Why the run ended DIVERGED (empty otherwise).
     virtual std::string diverged_reason() const = 0;
+    // The truth message's payload (sim_truth_t state[16], extra[8]); each plant documents its
+    // layout next to its truth_names(). Analysis only.
+    virtual void truth_message(std::array<double, 16> &state, std::array<double, 8> &extra) const = 0;
 };
 
 }  // namespace sim

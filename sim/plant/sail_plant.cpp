@@ -189,6 +189,21 @@ void SailPlant::set_state(const Vec6 &x, const Vec2 &beta_rad)
     state_ = check();
 }
 
+void SailPlant::truth_message(std::array<double, 16> &state, std::array<double, 8> &extra) const
+{
+    const std::vector<double> t = truth();   // w, mu.. (6), beta (2), bdot applied (2)
+    state.fill(0.0);
+    extra.fill(0.0);
+    for (std::size_t i = 0; i < 8u && i < t.size(); ++i) {
+        state[i] = t[i];
+    }
+    extra[0] = scn_.k2_true_per_s2;
+    extra[1] = t.size() > 8u ? t[8] : 0.0;
+    extra[2] = t.size() > 9u ? t[9] : 0.0;
+    extra[3] = static_cast<double>(scn_.sigma);
+    extra[4] = scn_.j_factor;
+}
+
 std::vector<double> SailPlant::truth() const
 {
     return {x_(0), x_(1), x_(2), x_(3), x_(4), x_(5), beta_rad_(0), beta_rad_(1),

@@ -25,6 +25,9 @@ public:
     //  beta_z_rad, bdot_y_radps, bdot_z_radps] (the last two: rate applied over the last period)
     std::vector<double> truth() const override;
     std::vector<std::string> truth_names() const override;
+    // state[0..7] = truth()[0..7] (w, mu, mudot, beta); extra = {k^2 true, bdot_y, bdot_z
+    // applied, sigma, J factor}.
+    void truth_message(std::array<double, 16> &state, std::array<double, 8> &extra) const override;
     const std::vector<TruthEvent> &events() const override { return events_; }
     std::string diverged_reason() const override { return diverged_reason_; }
 

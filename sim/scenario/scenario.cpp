@@ -135,6 +135,249 @@ private:
     std::string source_;
 };
 
+void parse_faults_lockstep(const YAML::Node &root, const Reader &r, Scenario &s)
+{
+    if (const YAML::Node f = root["faults"]) {
+        r.check_keys(f, "faults", {"seed", "drop_ppm", "dup_ppm", "reorder_ppm", "reorder_window", "bitflip_ppm",
+                                   "truncate_ppm", "gyro_nan_s", "gyro_spike_s"});
+        auto ppm = [&](const char *k, std::uint32_t &v) {
+            if (f[k]) {
+                v = static_cast<std::uint32_t>(r.integer(f[k], std::string("faults.") + k, 0, 1000000));
+            }
+        };
+        if (f["seed"]) {
+            s.faults.seed = r.unsigned64(f["seed"], "faults.seed");
+        }
+        ppm("drop_ppm", s.faults.drop_ppm);
+        ppm("dup_ppm", s.faults.dup_ppm);
+        ppm("reorder_ppm", s.faults.reorder_ppm);
+        ppm("bitflip_ppm", s.faults.bitflip_ppm);
+        ppm("truncate_ppm", s.faults.truncate_ppm);
+        if (f["reorder_window"]) {
+            s.faults.reorder_window = static_cast<std::uint32_t>(r.integer(f["reorder_window"], "faults.reorder_window", 1, 100));
+        }
+        if (f["gyro_nan_s"]) {
+            s.faults.gyro_nan_s = r.pair(f["gyro_nan_s"], "faults.gyro_nan_s", 0.0, 1.0e5);
+        }
+        if (f["gyro_spike_s"]) {
+            s.faults.gyro_spike_s = r.pair(f["gyro_spike_s"], "faults.gyro_spike_s", 0.0, 1.0e5);
+        }
+    }
+    if (const YAML::Node l = root["lockstep"]) {
+        r.check_keys(l, "lockstep", {"retx_ms", "deadline_ms", "retx_max"});
+        if (l["retx_ms"]) {
+            s.lockstep.retx_ms = static_cast<std::uint32_t>(r.integer(l["retx_ms"], "lockstep.retx_ms", 1, 60000));
+        }
+        if (l["deadline_ms"]) {
+            s.lockstep.deadline_ms = static_cast<std::uint32_t>(r.integer(l["deadline_ms"], "lockstep.deadline_ms", 1, 600000));
+        }
+        if (l["retx_max"]) {
+            s.lockstep.retx_max = static_cast<std::uint32_t>(r.integer(l["retx_max"], "lockstep.retx_max", 0, 100));
+        }
+    }
+}
+
+// commands: [{t_s, cmd: MODE|IMP_START|IMP_ABORT|IMP_CLEAR, ...}] in flight units (steps, counts).
+void parse_commands(const YAML::Node &root, const Reader &r, Scenario &s)
+{
+    const YAML::Node cs = root["commands"];
+    if (!cs) {
+        return;
+    }
+    if (!cs.IsSequence()) {
+        r.fail("commands", cs, "must be a list of commands");
+    }
+    const double h = s.h_s();
+    double t_prev = -1.0;
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+        const YAML::Node c = cs[i];
+        const std::string key = "commands[" + std::to_string(i) + "]";
+        r.check_keys(c, key, {"t_s", "cmd", "mode", "t0_s", "tf_s", "target_pos_m", "target_vel_mps"});
+        if (!c["t_s"] || !c["cmd"]) {
+            r.fail(key, c, "needs t_s and cmd");
+        }
+        ScnCommand sc;
+        sc.t_s = r.number(c["t_s"], key + ".t_s", 0.0, 1.0e6);
+        if (sc.t_s < t_prev) {
+            r.fail(key + ".t_s", c["t_s"], "commands must be in time order");
+        }
+        t_prev = sc.t_s;
+        const std::string name = r.text(c["cmd"], key + ".cmd");
+        if (name == "MODE") {
+            sc.cmd = 1;
+            const std::string m = c["mode"] ? r.text(c["mode"], key + ".mode") : std::string();
+            const char *modes[] = {"BOOT", "STANDBY", "DETUMBLE", "SAFE", "RENDEZVOUS"};
+            sc.args[0] = -1;
+            for (std::int32_t k = 0; k < 5; ++k) {
+                if (m == modes[k]) { sc.args[0] = k; }
+            }
+            if (sc.args[0] < 0) {
+                r.fail(key + ".mode", c["mode"], "MODE needs mode: STANDBY | DETUMBLE | SAFE | RENDEZVOUS");
+            }
+        } else if (name == "IMP_START") {
+            sc.cmd = 2;
+            for (const char *k : {"t0_s", "tf_s"}) {
+                if (!c[k]) { r.fail(key, c, std::string("IMP_START needs ") + k); }
+            }
+            const double t0 = r.number(c["t0_s"], key + ".t0_s", 0.0, 1.0e6);
+            const double tf = r.number(c["tf_s"], key + ".tf_s", 0.0, 1.0e6);
+            sc.args[0] = static_cast<std::int32_t>(std::llround(t0 / h));
+            sc.args[1] = static_cast<std::int32_t>(std::llround(tf / h));
+            for (int a = 0; a < 3; ++a) {
+                if (c["target_pos_m"]) {
+                    sc.args[static_cast<std::size_t>(2 + a)] = static_cast<std::int32_t>(std::llround(
+                        r.number(c["target_pos_m"][static_cast<std::size_t>(a)], key + ".target_pos_m", -1.0e6, 1.0e6) * 1000.0));
+                }
+                if (c["target_vel_mps"]) {
+                    sc.args[static_cast<std::size_t>(5 + a)] = static_cast<std::int32_t>(std::llround(
+                        r.number(c["target_vel_mps"][static_cast<std::size_t>(a)], key + ".target_vel_mps", -100.0, 100.0) * 1.0e5));
+                }
+            }
+        } else if (name == "IMP_ABORT") {
+            sc.cmd = 3;
+        } else if (name == "IMP_CLEAR") {
+            sc.cmd = 4;
+        } else {
+            r.fail(key + ".cmd", c["cmd"], "unknown command '" + name + "' (MODE, IMP_START, IMP_ABORT, IMP_CLEAR)");
+        }
+        s.commands.push_back(sc);
+    }
+}
+
+std::array<double, 3> triple(const Reader &r, const YAML::Node &n, const std::string &key, double lo, double hi)
+{
+    if (!n.IsSequence() || n.size() != 3u) {
+        r.fail(key, n, "must be a list of three numbers [x, y, z]");
+    }
+    return {r.number(n[0], key + "[0]", lo, hi), r.number(n[1], key + "[1]", lo, hi), r.number(n[2], key + "[2]", lo, hi)};
+}
+
+void parse_nav(const YAML::Node &n, const Reader &r, NavSetup &v)
+{
+    r.check_keys(n, "cw.nav", {"profile", "f_hz", "sigma_p_m", "sigma_v_mps", "bias_p_m", "bias_v_mps", "range_m",
+                               "dropouts_s", "dropout_ppm", "seed"});
+    if (n["profile"]) {
+        v.profile = r.text(n["profile"], "cw.nav.profile");
+        if (v.profile == "ideal") {
+            v.sigma_p_m = 0.0; v.sigma_v_mps = 0.0;
+        } else if (v.profile == "nominal") {
+            v.sigma_p_m = 0.1; v.sigma_v_mps = 1e-3;      // spec 50 §2.5
+        } else if (v.profile == "degraded") {
+            v.sigma_p_m = 0.5; v.sigma_v_mps = 5e-3;
+        } else if (v.profile != "custom") {
+            r.fail("cw.nav.profile", n["profile"], "must be ideal, nominal, degraded or custom");
+        }
+    }
+    if (n["sigma_p_m"] || n["sigma_v_mps"]) {
+        if (v.profile != "custom") {
+            r.fail("cw.nav", n, "sigma_p_m / sigma_v_mps need profile: custom");
+        }
+        if (n["sigma_p_m"]) { v.sigma_p_m = r.number(n["sigma_p_m"], "cw.nav.sigma_p_m", 0.0, 1000.0); }
+        if (n["sigma_v_mps"]) { v.sigma_v_mps = r.number(n["sigma_v_mps"], "cw.nav.sigma_v_mps", 0.0, 10.0); }
+    }
+    if (n["f_hz"]) { v.f_hz = r.number(n["f_hz"], "cw.nav.f_hz", 0.01, 100.0); }
+    if (n["bias_p_m"]) { v.bias_p_m = triple(r, n["bias_p_m"], "cw.nav.bias_p_m", -1000.0, 1000.0); }
+    if (n["bias_v_mps"]) { v.bias_v_mps = triple(r, n["bias_v_mps"], "cw.nav.bias_v_mps", -10.0, 10.0); }
+    if (n["range_m"]) { v.range_m = r.number(n["range_m"], "cw.nav.range_m", 1.0, 1.0e7); }
+    if (n["dropout_ppm"]) {
+        v.dropout_ppm = static_cast<std::uint32_t>(r.integer(n["dropout_ppm"], "cw.nav.dropout_ppm", 0, 1000000));
+    }
+    if (n["seed"]) { v.seed = r.unsigned64(n["seed"], "cw.nav.seed"); }
+    if (const YAML::Node d = n["dropouts_s"]) {
+        if (!d.IsSequence()) {
+            r.fail("cw.nav.dropouts_s", d, "must be a list of [t0, t1] windows");
+        }
+        for (std::size_t i = 0; i < d.size(); ++i) {
+            const auto w = r.pair(d[i], "cw.nav.dropouts_s[" + std::to_string(i) + "]", 0.0, 1.0e6);
+            if (w[1] <= w[0]) {
+                r.fail("cw.nav.dropouts_s", d[i], "window must have t1 > t0");
+            }
+            v.dropouts_s.push_back(w);
+        }
+    }
+}
+
+// plant: cw (spec 50 §2).
+void parse_cw_root(const YAML::Node &root, const Reader &r, Scenario &s)
+{
+    for (const char *k : {"model", "sigma", "k2_true_per_s2", "j_factor", "w0_degps", "mu0_deg", "mudot0_degps",
+                          "propagator", "ode_substeps", "gyro", "gimbal", "limits"}) {
+        if (root[k]) {
+            r.fail(k, root[k], "not a key of plant: cw");
+        }
+    }
+    s.period_us = 100000u;   // valve tick = fsw period, spec 50 §2.4
+    s.fsw.table = "imp_default";
+    if (root["period_us"]) {
+        s.period_us = static_cast<std::uint32_t>(r.integer(root["period_us"], "period_us", 1000, 10000000));
+    }
+    s.duration_s = r.number(root["duration_s"], "duration_s", 0.0, 1.0e6);
+    if (const YAML::Node c = root["cw"]) {
+        r.check_keys(c, "cw", {"omega_radps", "a_nom_mps2", "x0", "eps_c", "eps", "t_min_us", "min_on", "subtick_us",
+                               "stuck_off", "stuck_on", "nav"});
+        if (c["omega_radps"]) { s.cw.omega_radps = r.number(c["omega_radps"], "cw.omega_radps", 8.0e-4, 1.2e-3); }
+        if (c["a_nom_mps2"]) { s.cw.a_nom_mps2 = r.number(c["a_nom_mps2"], "cw.a_nom_mps2", 1e-4, 10.0); }
+        if (const YAML::Node x = c["x0"]) {
+            if (!x.IsSequence() || x.size() != 6u) {
+                r.fail("cw.x0", x, "must be [x, x', y, y', z, z'] in m and m/s");
+            }
+            for (std::size_t i = 0; i < 6u; ++i) {
+                s.cw.x0[i] = r.number(x[i], "cw.x0[" + std::to_string(i) + "]", -1.0e6, 1.0e6);
+            }
+        }
+        if (c["eps_c"]) { s.cw.eps_c = r.number(c["eps_c"], "cw.eps_c", -0.5, 0.5); }
+        if (const YAML::Node e = c["eps"]) {
+            if (!e.IsSequence() || e.size() != 6u) {
+                r.fail("cw.eps", e, "must list six per-thruster level errors");
+            }
+            for (std::size_t i = 0; i < 6u; ++i) { s.cw.eps[i] = r.number(e[i], "cw.eps", -0.5, 0.5); }
+        }
+        if (c["t_min_us"]) { s.cw.t_min_us = static_cast<std::uint32_t>(r.integer(c["t_min_us"], "cw.t_min_us", 0, 10000000)); }
+        if (c["min_on"]) {
+            const std::string m = r.text(c["min_on"], "cw.min_on");
+            if (m != "drop" && m != "stretch") {
+                r.fail("cw.min_on", c["min_on"], "must be drop or stretch");
+            }
+            s.cw.stretch = (m == "stretch");
+        }
+        if (c["subtick_us"]) { s.cw.subtick_us = static_cast<std::uint32_t>(r.integer(c["subtick_us"], "cw.subtick_us", 0, 1000000)); }
+        for (const char *k : {"stuck_off", "stuck_on"}) {
+            if (const YAML::Node f = c[k]) {
+                r.check_keys(f, std::string("cw.") + k, {"thruster", "t_s"});
+                if (!f["thruster"] || !f["t_s"]) {
+                    r.fail(std::string("cw.") + k, f, "needs thruster (0..5: +x -x +y -y +z -z) and t_s");
+                }
+                const int j = static_cast<int>(r.integer(f["thruster"], std::string("cw.") + k + ".thruster", 0, 5));
+                const double t = r.number(f["t_s"], std::string("cw.") + k + ".t_s", 0.0, 1.0e6);
+                if (std::string(k) == "stuck_off") { s.cw.stuck_off_j = j; s.cw.stuck_off_t_s = t; }
+                else { s.cw.stuck_on_j = j; s.cw.stuck_on_t_s = t; }
+            }
+        }
+        if (c["nav"]) {
+            parse_nav(c["nav"], r, s.cw.nav);
+        }
+    }
+    if (const YAML::Node f = root["fsw"]) {
+        r.check_keys(f, "fsw", {"table"});
+        if (f["table"]) {
+            s.fsw.table = r.text(f["table"], "fsw.table");
+            if (s.fsw.table != "imp_default" && s.fsw.table != "imp_1s" && s.fsw.table != "imp_sub1ms") {
+                r.fail("fsw.table", f["table"], "unknown rendezvous table '" + s.fsw.table +
+                                                    "' (imp_default, imp_1s, imp_sub1ms)");
+            }
+        }
+    }
+    parse_faults_lockstep(root, r, s);
+    parse_commands(root, r, s);
+    if (s.n_steps() == 0u) {
+        r.fail("duration_s", root["duration_s"], "shorter than one period");
+    }
+    const double spn = 1.0 / (s.cw.nav.f_hz * s.h_s());   // steps per nav sample
+    if (std::fabs(spn - std::round(spn)) > 1e-9 || spn < 1.0) {
+        r.fail("cw.nav.f_hz", root["cw"]["nav"], "the nav period must be a whole number of fsw periods");
+    }
+}
+
 Scenario parse_root(const YAML::Node &root, const Reader &r)
 {
     Scenario s = default_scenario();
@@ -145,10 +388,9 @@ Scenario parse_root(const YAML::Node &root, const Reader &r)
     r.check_keys(root, "",
                  {"name", "plant", "model", "sigma", "k2_true_per_s2", "j_factor", "period_us", "duration_s",
                   "w0_degps", "mu0_deg", "mudot0_degps", "propagator", "ode_substeps", "gyro", "gimbal", "limits",
-                  "fsw", "faults", "lockstep"});
+                  "fsw", "faults", "lockstep", "cw", "commands"});
 
-    // Required keys: the identity of the run (spec 10 §2.2: every scenario names its sigma).
-    for (const char *k : {"name", "model", "sigma", "duration_s"}) {
+    for (const char *k : {"name", "duration_s"}) {
         if (!root[k]) {
             r.fail(k, root[k], "missing required key");
         }
@@ -156,9 +398,22 @@ Scenario parse_root(const YAML::Node &root, const Reader &r)
     s.name = r.text(root["name"], "name");
     if (root["plant"]) {
         s.plant = r.text(root["plant"], "plant");
-        if (s.plant != "sail") {
-            r.fail("plant", root["plant"], "unknown plant '" + s.plant + "' (known: sail)");
+        if (s.plant != "sail" && s.plant != "cw") {
+            r.fail("plant", root["plant"], "unknown plant '" + s.plant + "' (known: sail, cw)");
         }
+    }
+    if (s.plant == "cw") {
+        parse_cw_root(root, r, s);
+        return s;
+    }
+    // The sail's identity (spec 10 §2.2: every scenario names its sigma).
+    for (const char *k : {"model", "sigma"}) {
+        if (!root[k]) {
+            r.fail(k, root[k], "missing required key");
+        }
+    }
+    if (root["cw"]) {
+        r.fail("cw", root["cw"], "only for plant: cw");
     }
     const std::int64_t sig = r.integer(root["sigma"], "sigma", -1, 1);
     if (sig == 0) {
@@ -267,44 +522,8 @@ Scenario parse_root(const YAML::Node &root, const Reader &r)
             s.fsw.bdot_max_degps = r.number(f["bdot_max_degps"], "fsw.bdot_max_degps", 0.01, 20.0);
         }
     }
-    if (const YAML::Node f = root["faults"]) {
-        r.check_keys(f, "faults", {"seed", "drop_ppm", "dup_ppm", "reorder_ppm", "reorder_window", "bitflip_ppm",
-                                   "truncate_ppm", "gyro_nan_s", "gyro_spike_s"});
-        auto ppm = [&](const char *k, std::uint32_t &v) {
-            if (f[k]) {
-                v = static_cast<std::uint32_t>(r.integer(f[k], std::string("faults.") + k, 0, 1000000));
-            }
-        };
-        if (f["seed"]) {
-            s.faults.seed = r.unsigned64(f["seed"], "faults.seed");
-        }
-        ppm("drop_ppm", s.faults.drop_ppm);
-        ppm("dup_ppm", s.faults.dup_ppm);
-        ppm("reorder_ppm", s.faults.reorder_ppm);
-        ppm("bitflip_ppm", s.faults.bitflip_ppm);
-        ppm("truncate_ppm", s.faults.truncate_ppm);
-        if (f["reorder_window"]) {
-            s.faults.reorder_window = static_cast<std::uint32_t>(r.integer(f["reorder_window"], "faults.reorder_window", 1, 100));
-        }
-        if (f["gyro_nan_s"]) {
-            s.faults.gyro_nan_s = r.pair(f["gyro_nan_s"], "faults.gyro_nan_s", 0.0, 1.0e5);
-        }
-        if (f["gyro_spike_s"]) {
-            s.faults.gyro_spike_s = r.pair(f["gyro_spike_s"], "faults.gyro_spike_s", 0.0, 1.0e5);
-        }
-    }
-    if (const YAML::Node l = root["lockstep"]) {
-        r.check_keys(l, "lockstep", {"retx_ms", "deadline_ms", "retx_max"});
-        if (l["retx_ms"]) {
-            s.lockstep.retx_ms = static_cast<std::uint32_t>(r.integer(l["retx_ms"], "lockstep.retx_ms", 1, 60000));
-        }
-        if (l["deadline_ms"]) {
-            s.lockstep.deadline_ms = static_cast<std::uint32_t>(r.integer(l["deadline_ms"], "lockstep.deadline_ms", 1, 600000));
-        }
-        if (l["retx_max"]) {
-            s.lockstep.retx_max = static_cast<std::uint32_t>(r.integer(l["retx_max"], "lockstep.retx_max", 0, 100));
-        }
-    }
+    parse_faults_lockstep(root, r, s);
+    parse_commands(root, r, s);
     // Cross-key checks.
     if (s.n_steps() == 0u) {
         r.fail("duration_s", root["duration_s"], "shorter than one period");

@@ -4,8 +4,10 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace sim {
 
@@ -61,6 +63,47 @@ struct LockstepSetup {
     std::uint32_t retx_max = 2u;              // re-publications of one frame before it is missed
 };
 
+// Relative-navigation sensor of the rendezvous plant (spec 50 §2.5): position (1 mm) and
+// velocity (10 um/s) counts in the spec's frame, a validity bit and the sample's step index.
+struct NavSetup {
+    std::string profile = "ideal";            // ideal | nominal | degraded | custom
+    double f_hz = 1.0;                        // sample rate (must divide the fsw rate)
+    double sigma_p_m = 0.0;                   // white noise per axis (set by the profile)
+    double sigma_v_mps = 0.0;
+    std::array<double, 3> bias_p_m{};         // constant bias per axis
+    std::array<double, 3> bias_v_mps{};
+    double range_m = 1.0e6;                   // beyond |r| > range_m the sample is invalid
+    std::vector<std::array<double, 2>> dropouts_s;   // scripted [t0, t1) windows without samples
+    std::uint32_t dropout_ppm = 0u;           // random dropouts (per sample)
+    std::uint64_t seed = 0u;
+};
+
+// Clohessy-Wiltshire rendezvous plant (spec 50 §2): chaser state, six on/off thrusters with
+// level errors, minimum on-time, valve tick (the fsw period) and sub-tick, scripted stuck valves.
+struct CwSetup {
+    double omega_radps = 1.131367e-3;         // orbit rate (400 km circular by default)
+    double a_nom_mps2 = 0.04;                 // nominal acceleration per thruster
+    std::array<double, 6> x0{{5000.0, -1.0, 4000.0, -1.0, 4000.0, -1.0}};   // x, x', y, y', z, z' [m, m/s]
+    double eps_c = 0.0;                       // common thrust-level error
+    std::array<double, 6> eps{};              // per-thruster level error (+x, -x, +y, -y, +z, -z)
+    std::uint32_t t_min_us = 20000u;          // minimum on-time
+    bool stretch = false;                     // shorter command: false = dropped, true = stretched
+    std::uint32_t subtick_us = 0u;            // 0: whole steps
+    int stuck_off_j = -1;                     // thruster stuck off from stuck_off_t_s
+    double stuck_off_t_s = std::numeric_limits<double>::infinity();
+    int stuck_on_j = -1;
+    double stuck_on_t_s = std::numeric_limits<double>::infinity();
+    NavSetup nav;
+};
+
+// One telecommand of the scenario's test conductor (gnc::fsw_cmd_t), published by the plant node
+// before the first frame at or after t_s. args are already in flight units (steps, counts).
+struct ScnCommand {
+    double t_s = 0.0;
+    std::int32_t cmd = 0;                     // fsw_cmd_t CMD_* (1 MODE, 2 IMP_START, 3 IMP_ABORT, 4 IMP_CLEAR)
+    std::array<std::int32_t, 8> args{};
+};
+
 struct Scenario {
     std::string name;
     std::string source;                       // file it came from (for messages and logs)
@@ -82,6 +125,8 @@ struct Scenario {
     FswSetup fsw;
     FaultSetup faults;
     LockstepSetup lockstep;
+    CwSetup cw;                               // plant "cw" only
+    std::vector<ScnCommand> commands;         // in time order
 
     double h_s() const { return static_cast<double>(period_us) * 1e-6; }
     std::uint64_t n_steps() const;            // round(duration / h)

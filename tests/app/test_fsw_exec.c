@@ -5,6 +5,7 @@
  */
 #include "fsw_exec.h"
 #include "obs_tables.h"
+#include "imp_tables.h"
 #include "ut.h"
 
 #define CNT_1DEG_S 18301   /* 1 deg/s in counts of 2^-20 rad/s */
@@ -22,6 +23,7 @@ static fsw_cfg_t cfg50(void)
     c.period_us = 20000u;
     c.stale_max = 50u;
     c.boot_mode = FSW_MODE_DETUMBLE;
+    c.mission = FSW_MISSION_DETUMBLE;
     return c;
 }
 
@@ -41,6 +43,10 @@ static fsw_in_t frame(int64_t seq, int32_t wy, int32_t wz)
     in.mode_cmd = FSW_CMD_NONE;
     in.host_missed = 0u;
     in.host_rejected = 0u;
+    in.tc = FSW_TC_NONE;
+    for (i = 0u; i < 8u; i++) {
+        in.tc_arg[i] = 0;
+    }
     return in;
 }
 
@@ -377,6 +383,138 @@ UT_TEST(deterministic_and_instances_independent)
     UT_UEQ(diff, 0u);
 }
 
+/* ------------------------------------------------------------------ RENDEZVOUS mission */
+
+static fsw_cfg_t cfg_rdv(void)
+{
+    fsw_cfg_t c;
+    c.period_us = 100000u;
+    c.stale_max = 5u;
+    c.boot_mode = FSW_MODE_RENDEZVOUS;
+    c.mission = FSW_MISSION_RENDEZVOUS;
+    return c;
+}
+
+/* A nav frame of the paper's example state (5 km, -1 m/s, 4 km, -1 m/s, 4 km, -1 m/s), sample
+   taken at step k. */
+static fsw_in_t nav_frame(int64_t k)
+{
+    fsw_in_t in = frame(k, 0, 0);
+    uint32_t i;
+    in.utime_us = k * 100000;
+    in.n_counts = FSW_RDV_N_SENS;
+    for (i = 0u; i < 3u; i++) {
+        in.counts[i] = (i == 0u) ? 5000000 : 4000000;   /* mm */
+        in.counts[3u + i] = -100000;                    /* 10 um/s */
+    }
+    in.counts[6] = (int32_t)k;
+    return in;
+}
+
+UT_TEST(rendezvous_boot_channel_map_and_telemetry)
+{
+    uint8_t buf[FSW_TLM_RDV_BYTES];
+    fsw_cfg_t c = cfg_rdv();
+    fsw_in_t in = nav_frame(0);
+    uint32_t i;
+    UT_UEQ(fsw_init_rdv(&g_a, &c, &IMP_TBL_DEFAULT, 3u), FSW_OK);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_RENDEZVOUS);
+    UT_UEQ(g_oa.n_act, FSW_RDV_N_ACT);
+    for (i = 0u; i < FSW_ACT_MAX; i++) {
+        UT_CHECK_EQ(g_oa.act_cnt[i], 0);              /* IDLE: every thruster off */
+    }
+    UT_UEQ(g_oa.health & 0xFFu, 0u);
+    UT_UEQ(g_oa.tlm.mission, FSW_MISSION_RENDEZVOUS);
+    UT_UEQ(g_oa.tlm.imp.mode, IMP_MODE_IDLE);
+    UT_UEQ(g_oa.tlm.tbl_revision, 3u);
+    UT_UEQ(fsw_tlm_layout(&g_oa.tlm), FSW_TLM_RDV_LAYOUT_VERSION);
+    UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, FSW_TLM_RDV_BYTES), FSW_TLM_RDV_BYTES);
+    UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, FSW_TLM_RDV_BYTES - 1u), 0u);
+    UT_UEQ(buf[16], 1u);                               /* step 1, after utime and seq */
+    /* the wrong mission's init is refused */
+    UT_UEQ(fsw_init(&g_b, &c, &OBS_TBL_50HZ_PHYS, 1u), FSW_ERR_ARG);
+    {
+        fsw_cfg_t d = cfg50();
+        UT_UEQ(fsw_init_rdv(&g_b, &d, &IMP_TBL_DEFAULT, 1u), FSW_ERR_ARG);
+    }
+}
+
+UT_TEST(rendezvous_bad_nav_is_counted_and_never_safe)
+{
+    fsw_cfg_t c = cfg_rdv();
+    int64_t k;
+    UT_UEQ(fsw_init_rdv(&g_a, &c, &IMP_TBL_DEFAULT, 1u), FSW_OK);
+    for (k = 0; k < 40; k++) {
+        fsw_in_t in = nav_frame(k);
+        if ((k % 4) == 1) {
+            in.status[2] = FSW_ST_STALE;               /* plant: no valid sample */
+        } else if ((k % 4) == 2) {
+            in.counts[3] = FSW_NAV_VEL_MAX_CNT + 1;    /* beyond the accepted range */
+        } else if ((k % 4) == 3) {
+            in.n_counts = 6u;                          /* frame too short */
+        } else {
+            /* valid */
+        }
+        fsw_step(&g_a, &in, &g_oa);
+        UT_CHECK_UEQ(g_oa.mode, FSW_MODE_RENDEZVOUS);  /* far beyond stale_max = 5, still flying */
+    }
+    UT_UEQ(g_oa.tlm.n_chan_rej, 30u);
+    UT_UEQ(g_oa.tlm.n_in_bad, 10u);
+    UT_UEQ(g_oa.tlm.n_safe, 0u);
+    UT_TRUE((g_oa.tlm.health_sticky & FSW_H_STALE) != 0u);
+}
+
+UT_TEST(rendezvous_telecommands_only_in_the_mission_mode)
+{
+    fsw_cfg_t c = cfg_rdv();
+    fsw_in_t in = nav_frame(0);
+    c.boot_mode = FSW_MODE_STANDBY;
+    UT_UEQ(fsw_init_rdv(&g_a, &c, &IMP_TBL_DEFAULT, 1u), FSW_OK);
+    fsw_step(&g_a, &in, &g_oa);
+    in = nav_frame(1);
+    in.tc = FSW_TC_IMP_START;                          /* START in STANDBY: refused */
+    in.tc_arg[0] = 200;
+    in.tc_arg[1] = 200 + 10550;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.tlm.n_tc_rej, 1u);
+    UT_TRUE((g_oa.health & FSW_H_TC_REJ) != 0u);
+    UT_UEQ(g_oa.tlm.imp.mode, IMP_MODE_IDLE);
+    in = nav_frame(2);
+    in.mode_cmd = FSW_MODE_DETUMBLE;                   /* not this mission's mode */
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_STANDBY);
+    UT_UEQ(g_oa.tlm.n_mode_rej, 1u);
+    in = nav_frame(3);
+    in.mode_cmd = FSW_MODE_RENDEZVOUS;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_RENDEZVOUS);
+    in = nav_frame(4);
+    in.tc = FSW_TC_IMP_START;                          /* now taken by the scheduler */
+    in.tc_arg[0] = 200;
+    in.tc_arg[1] = 200 + 10550;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.tlm.n_tc, 1u);
+    UT_TRUE(g_oa.tlm.imp.mode != IMP_MODE_IDLE);       /* planning (or already armed) */
+    UT_UEQ(g_oa.tlm.imp.cmd_rej, 0u);
+}
+
+UT_TEST(rendezvous_bad_boot_table_goes_safe)
+{
+    fsw_cfg_t c = cfg_rdv();
+    imp_params_t p = IMP_TBL_DEFAULT;
+    fsw_in_t in = nav_frame(0);
+    p.max_iter = 0u;                                   /* refused by imp_params_check */
+    UT_UEQ(fsw_init_rdv(&g_a, &c, &p, 1u), FSW_ERR_INVARIANT);
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_TRUE((g_oa.health & FSW_H_NO_TABLE) != 0u);
+    UT_UEQ(g_oa.tlm.n_tbl_rej, 1u);
+    p = IMP_TBL_DEFAULT;
+    p.period_us = 200000u;                             /* valid table, other period */
+    UT_UEQ(fsw_init_rdv(&g_a, &c, &p, 1u), FSW_ERR_INVARIANT);
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
@@ -390,6 +528,10 @@ int main(void)
         UT_CASE(scrub_failure_goes_to_safe),
         UT_CASE(telemetry_encodes_to_its_fixed_size),
         UT_CASE(deterministic_and_instances_independent),
+        UT_CASE(rendezvous_boot_channel_map_and_telemetry),
+        UT_CASE(rendezvous_bad_nav_is_counted_and_never_safe),
+        UT_CASE(rendezvous_telecommands_only_in_the_mission_mode),
+        UT_CASE(rendezvous_bad_boot_table_goes_safe),
     };
     return UT_RUN("fsw_exec", cases);
 }

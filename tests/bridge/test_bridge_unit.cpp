@@ -425,6 +425,58 @@ void counters_saturate(void **)
 
 }  // namespace
 
+// Telecommands wait for their frame, go to the backend just before its step in arrival order,
+// and a full queue refuses (cmd_rej) without touching the others.
+class CmdBackend final : public bridge::Backend {
+public:
+    bool reset() override { return true; }
+    bool step(const Frame &f, bridge::StepOutput &out) override
+    {
+        out = bridge::StepOutput{};
+        steps.push_back({f.seq, static_cast<std::int64_t>(got.size())});
+        return true;
+    }
+    bool command(const bridge::FswCommand &c) override
+    {
+        got.push_back(c.cmd);
+        return c.cmd != 99;   // 99: a command this backend does not take
+    }
+    const char *name() const override { return "cmd"; }
+    std::vector<std::int32_t> got;
+    std::vector<std::pair<std::int64_t, std::int64_t>> steps;   // (seq, commands seen before it)
+};
+
+void telecommands_wait_for_their_frame(void **)
+{
+    CmdBackend be;
+    Bridge br(be, limits_pm(1000000));
+    bridge::FswCommand c{};
+    c.apply_seq = 2; c.cmd = 1;
+    assert_true(br.on_command(c));
+    c.apply_seq = 0; c.cmd = 2;
+    assert_true(br.on_command(c));
+    c.apply_seq = 2; c.cmd = 99;
+    assert_true(br.on_command(c));
+    for (std::int64_t k = 0; k < 4; ++k) {
+        (void)br.on_frame(bt::make_frame(k, kPeriod));
+    }
+    assert_int_equal(be.got.size(), 3);
+    assert_int_equal(be.got[0], 2);                 // due at frame 0
+    assert_int_equal(be.got[1], 1);                 // due at 2, in arrival order
+    assert_int_equal(be.got[2], 99);
+    assert_int_equal(be.steps[0].second, 1);        // frame 0 stepped after its command
+    assert_int_equal(be.steps[1].second, 1);
+    assert_int_equal(be.steps[2].second, 3);
+    assert_int_equal(br.counters().cmds, 2);
+    assert_int_equal(br.counters().cmd_rej, 1);     // the backend refused 99
+    for (std::size_t i = 0; i < bridge::kCmdQueue; ++i) {
+        c.apply_seq = 100;
+        assert_true(br.on_command(c));
+    }
+    assert_false(br.on_command(c));                 // full: refused and counted
+    assert_int_equal(br.counters().cmd_rej, 2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -432,6 +484,7 @@ int main(void)
         cmocka_unit_test(gate_before_first_and_first_seq),
         cmocka_unit_test(gate_unchanged_on_reject),
         cmocka_unit_test(gate_refuses_implausible_jump),
+        cmocka_unit_test(telecommands_wait_for_their_frame),
         cmocka_unit_test(validator_keeps_last_good),
         cmocka_unit_test(si_adapter_values),
         cmocka_unit_test(si_adapter_frames),

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "gnc_actuator_cmd_t.h"
+#include "gnc_fsw_cmd_t.h"
 #include "gnc_fsw_tlm_frame_t.h"
 #include "gnc_sensor_frame_t.h"
 #include "gnc_sil_ctl_t.h"
@@ -23,7 +24,7 @@
 /* Seeds, one per type (same in lcm_xlang_check.py). */
 enum {
     PAT_SEED_SENSOR = 101, PAT_SEED_ACT = 102, PAT_SEED_TLM = 103, PAT_SEED_TRUTH = 104,
-    PAT_SEED_UPLOAD = 105, PAT_SEED_ACK = 106, PAT_SEED_CTL = 107
+    PAT_SEED_UPLOAD = 105, PAT_SEED_ACK = 106, PAT_SEED_CTL = 107, PAT_SEED_CMD = 108
 };
 
 static inline uint64_t pat_u64(uint64_t *s)
@@ -170,6 +171,17 @@ static inline void pat_ctl(gnc_sil_ctl_t *m)
     m->status = pat_i32(&s);
 }
 
+static inline void pat_cmd(gnc_fsw_cmd_t *m)
+{
+    uint64_t s = PAT_SEED_CMD;
+    int i;
+    memset(m, 0, sizeof *m);
+    m->utime = pat_i64(&s);
+    m->apply_seq = pat_i64(&s);
+    m->cmd = pat_i32(&s);
+    for (i = 0; i < 8; ++i) { m->args[i] = pat_i32(&s); }
+}
+
 /* Encoded sizes (8-byte fingerprint + big-endian fields). Pinned: a change means a layout change. */
 #define PAT_SIZE_SENSOR 118
 #define PAT_SIZE_ACT     98
@@ -178,6 +190,7 @@ static inline void pat_ctl(gnc_sil_ctl_t *m)
 #define PAT_SIZE_UPLOAD 290
 #define PAT_SIZE_ACK     36
 #define PAT_SIZE_CTL     68
+#define PAT_SIZE_CMD     60
 #define PAT_SIZE_MAX    574
 
 #endif /* TESTS_LCM_PATTERN_H */

@@ -36,6 +36,7 @@ LCM_TYPE_OPS_(sim_truth_t, pat_truth)
 LCM_TYPE_OPS_(table_upload_t, pat_upload)
 LCM_TYPE_OPS_(table_ack_t, pat_ack)
 LCM_TYPE_OPS_(sil_ctl_t, pat_ctl)
+LCM_TYPE_OPS_(fsw_cmd_t, pat_cmd)
 
 #define LCM_TYPE_ROW_(T, LEN, FP) \
     { #T, sizeof(gnc_##T), (LEN), UINT64_C(FP), fill_##T, enc_##T, dec_##T, size_##T }
@@ -48,13 +49,14 @@ static const lcm_type_ops_t lcm_types[] = {
     LCM_TYPE_ROW_(table_upload_t,  PAT_SIZE_UPLOAD, 0x761968F3BDEBD216),
     LCM_TYPE_ROW_(table_ack_t,     PAT_SIZE_ACK,    0x7E7B615B9FBCBA38),
     LCM_TYPE_ROW_(sil_ctl_t,       PAT_SIZE_CTL,    0x937B516171D38092),
+    LCM_TYPE_ROW_(fsw_cmd_t,       PAT_SIZE_CMD,    0x20B66D8B1E07C406),
 };
 #define LCM_N_TYPES (sizeof lcm_types / sizeof lcm_types[0])
 
 /* Largest C struct (fsw_tlm_frame_t), for static scratch objects. */
 typedef union {
     gnc_sensor_frame_t a; gnc_actuator_cmd_t b; gnc_fsw_tlm_frame_t c; gnc_sim_truth_t d;
-    gnc_table_upload_t e; gnc_table_ack_t f; gnc_sil_ctl_t g;
+    gnc_table_upload_t e; gnc_table_ack_t f; gnc_sil_ctl_t g; gnc_fsw_cmd_t h;
 } lcm_any_t;
 
 static inline uint64_t lcm_be64(const uint8_t *p)

@@ -94,6 +94,11 @@ def expected(gnc):
     m.scenario = bytes(p.u8() for _ in range(32))
     m.seed, m.node_id, m.status = p.i64(), p.i32(), p.i32()
     out['sil_ctl_t'] = m
+
+    p = Pattern(108); m = gnc.fsw_cmd_t()
+    m.utime, m.apply_seq, m.cmd = p.i64(), p.i64(), p.i32()
+    m.args = [p.i32() for _ in range(8)]
+    out['fsw_cmd_t'] = m
     return out
 
 

@@ -98,11 +98,55 @@ SIM_TEST(test_scenario_errors)
     }
 }
 
+// The rendezvous plant's section and the test conductor's commands, in flight units.
+SIM_TEST(test_cw_and_commands)
+{
+    const sim::Scenario s = sim::parse_scenario(
+        "name: r\nplant: cw\nduration_s: 1100\n"
+        "cw:\n  x0: [5000, -1, 4000, -1, 4000, -1]\n  eps_c: 0.02\n"
+        "  stuck_off: {thruster: 0, t_s: 10}\n"
+        "  nav: {profile: nominal, seed: 3, dropouts_s: [[150, 450]]}\n"
+        "commands:\n"
+        "  - {t_s: 0, cmd: MODE, mode: RENDEZVOUS}\n"
+        "  - {t_s: 1, cmd: IMP_START, t0_s: 10, tf_s: 1065, target_pos_m: [1.5, -2, 0.001], target_vel_mps: [0.01, 0, -0.00002]}\n"
+        "  - {t_s: 900, cmd: IMP_ABORT}\n",
+        "r.yaml");
+    EXPECT_TRUE(s.plant == "cw");
+    EXPECT_EQ_INT(s.period_us, 100000);                         // the valve tick default
+    EXPECT_TRUE(s.fsw.table == "imp_default");
+    EXPECT_NEAR(s.cw.eps_c, 0.02, 0.0);
+    EXPECT_EQ_INT(s.cw.stuck_off_j, 0);
+    EXPECT_NEAR(s.cw.nav.sigma_p_m, 0.1, 0.0);                  // the nominal profile, spec 50 §2.5
+    EXPECT_NEAR(s.cw.nav.sigma_v_mps, 1e-3, 0.0);
+    EXPECT_EQ_INT(s.cw.nav.dropouts_s.size(), 1);
+    EXPECT_EQ_INT(s.commands.size(), 3);
+    EXPECT_EQ_INT(s.commands[0].cmd, 1);
+    EXPECT_EQ_INT(s.commands[0].args[0], 4);
+    EXPECT_EQ_INT(s.commands[1].cmd, 2);
+    EXPECT_EQ_INT(s.commands[1].args[0], 100);                  // 10 s / 0.1 s
+    EXPECT_EQ_INT(s.commands[1].args[1], 10650);
+    EXPECT_EQ_INT(s.commands[1].args[2], 1500);                 // mm
+    EXPECT_EQ_INT(s.commands[1].args[3], -2000);
+    EXPECT_EQ_INT(s.commands[1].args[4], 1);
+    EXPECT_EQ_INT(s.commands[1].args[5], 1000);                 // 10 um/s
+    EXPECT_EQ_INT(s.commands[1].args[7], -2);
+    EXPECT_EQ_INT(s.commands[2].cmd, 3);
+    expect_error("name: r\nplant: cw\nduration_s: 10\nsigma: 1\n", {"'sigma'", "not a key of plant: cw"});
+    expect_error("name: r\nplant: cw\nduration_s: 10\ncw: {nav: {profile: perfect}}\n", {"cw.nav.profile"});
+    expect_error("name: r\nplant: cw\nduration_s: 10\ncw: {nav: {f_hz: 3}}\n", {"whole number of fsw periods"});
+    expect_error("name: r\nplant: cw\nduration_s: 10\ncommands: [{t_s: 5, cmd: MODE, mode: X}]\n", {"commands[0].mode"});
+    expect_error("name: r\nplant: cw\nduration_s: 10\ncommands: [{t_s: 5, cmd: IMP_ABORT}, {t_s: 1, cmd: IMP_ABORT}]\n",
+                 {"time order"});
+    expect_error("name: r\nplant: cw\nduration_s: 10\ncommands: [{t_s: 5, cmd: FIRE}]\n", {"unknown command"});
+    expect_error(std::string(kMinimal) + "cw: {eps_c: 0.1}\n", {"only for plant: cw"});
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shipped_scenarios),
         cmocka_unit_test(test_scenario_errors),
+        cmocka_unit_test(test_cw_and_commands),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

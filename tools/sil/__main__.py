@@ -1,4 +1,5 @@
-"""python -m tools.sil {report LOG --out DIR | compare LOG_A LOG_B [--channel CH ...]} (from the repo root)."""
+"""python -m tools.sil {report LOG --out DIR | compare LOG_A LOG_B [--channel CH ...] | gen-tlm-rdv [--check]}
+(from the repo root)."""
 import argparse
 import sys
 
@@ -15,6 +16,8 @@ def main(argv=None):
                    help="lcm-gen Python bindings dir (default %(default)s; generated if missing)")
     r.add_argument("--json", help="also write the summary JSON to this file")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    g = sub.add_parser("gen-tlm-rdv", help="write (or --check) the RENDEZVOUS telemetry encoder, JSON and decoder table")
+    g.add_argument("--check", action="store_true")
     c = sub.add_parser("compare", help="byte-compare the messages of channels between two logs")
     c.add_argument("log_a")
     c.add_argument("log_b")
@@ -24,7 +27,13 @@ def main(argv=None):
                    help="drop a message equal to the previous one on its channel (udpm re-publications)")
     c.add_argument("--lcm-py", default=DEFAULT_LCM_PY, help="bindings, only for the field diff of a mismatch")
     a = ap.parse_args(argv)
+    if a.cmd == "gen-tlm-rdv":
+        from . import gen_tlm_rdv
+        return gen_tlm_rdv.main(a.check)
     if a.cmd == "report":
+        from . import report_rdv
+        if report_rdv.is_rdv_log(a.log, a.lcm_py):
+            return report_rdv.main(a)
         from . import report
         return report.main(a)
     from . import compare

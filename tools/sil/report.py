@@ -70,7 +70,7 @@ def read(path, lcm_py=None):
         "GNC_SENSOR": gnc.sensor_frame_t.decode, "GNC_CMD": gnc.actuator_cmd_t.decode,
         "GNC_TLM": gnc.fsw_tlm_frame_t.decode, "GNC_TRUTH": gnc.sim_truth_t.decode,
         "GNC_CTL": gnc.sil_ctl_t.decode, "GNC_TBL_UP": gnc.table_upload_t.decode,
-        "GNC_TBL_ACK": gnc.table_ack_t.decode,
+        "GNC_TBL_ACK": gnc.table_ack_t.decode, "GNC_FSW_CMD": gnc.fsw_cmd_t.decode,
     }
     sen, cmd, tlm, tru = [], [], [], []
     ctl, ack, up = [], [], []
@@ -105,6 +105,8 @@ def read(path, lcm_py=None):
             ack.append(dict(utime=m.utime, table_id="0x%04X" % (m.table_id & 0xFFFF), revision=m.revision,
                             result=ACK_RESULTS.get(m.result, m.result), reason="0x%08X" % (m.reason & 0xFFFFFFFF),
                             bytes_received=m.bytes_received))
+        elif ch == "GNC_FSW_CMD":
+            other[ch] = other.get(ch, 0) + 1
         else:
             up.append((m.utime, m.table_id, m.revision, m.total_len, m.offset, m.n))
 
