@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "backend.hpp"
+#include "imp_ref.hpp"
 #include "obs_ref.hpp"
 
 extern "C" {
@@ -39,6 +40,30 @@ private:
     ref::ObsState st_;
     std::uint32_t step_ = 0, limited_run_ = 0;
     std::unique_ptr<fsw_tlm_t> tlm_;
+    std::uint32_t missed_ = 0, rejected_ = 0;
+};
+
+// The rendezvous "reference FSW": the impulse scheduler in double (sim/reference ref::ImpFsw,
+// same decision logic, same imp_in_t / imp_out_t) behind the same channel maps and telecommands
+// as the executive's RENDEZVOUS mission (fsw_exec.h), for spec 50 A4-4's comparison of SIL miss
+// statistics. Nav is taken as one 7-channel sample, valid only as a whole, exactly as the
+// executive does; telemetry is the RENDEZVOUS layout with the reference's telemetry fields.
+class RefImpBackend final : public Backend {
+public:
+    explicit RefImpBackend(const imp_params_t &table);
+    bool reset() override;
+    bool step(const Frame &f, StepOutput &out) override;
+    void host_counters(const Counters &c) override;
+    bool command(const FswCommand &c) override;
+    const char *name() const override { return "ref-imp"; }
+
+private:
+    imp_params_t p_;
+    std::unique_ptr<ref::ImpFsw> fsw_;
+    std::unique_ptr<fsw_tlm_t> tlm_;
+    std::uint32_t step_ = 0;
+    std::int32_t tc_ = 0;
+    std::int32_t tc_arg_[8] = {};
     std::uint32_t missed_ = 0, rejected_ = 0;
 };
 

@@ -39,37 +39,97 @@ const F kTlm[] = {
 };
 }  // namespace
 
-bool decode_fsw_tlm(const std::uint8_t *buf, std::size_t len, std::map<std::string, std::int64_t> &out)
-{
-    if (len == kTlmRdvBytes) {   // RENDEZVOUS layout (generated table, tools/sil/gen_tlm_rdv.py)
-        fsw_rd_t r;
-        fsw_rd_init(&r, buf, static_cast<std::uint32_t>(len));
-        for (const TlmField &f : kTlmRdv) {
-            std::int64_t v = 0;
-            switch (f.t) {
-            case 'q': v = fsw_rd_i64(&r); break;
-            case 'u': v = static_cast<std::int64_t>(fsw_rd_u32(&r)); break;
-            case 'i': v = fsw_rd_i32(&r); break;
-            case 'h': v = static_cast<std::int64_t>(fsw_rd_u16(&r)); break;
-            default: v = static_cast<std::int64_t>(fsw_rd_u8(&r)); break;
-            }
-            out[f.name] = v;
-        }
-        return !r.err && r.pos == len;
+namespace {
+
+// One telemetry layout as the tap reads it: names and wire types in order, and the index of a
+// name (built once).
+struct TlmLayout {
+    std::vector<std::string> names;
+    std::vector<char> types;                      // 'q' i64, 'u' u32, 'i' i32, 'h' u16, 'b' u8
+    std::size_t bytes = 0;
+    std::map<std::string, std::size_t> idx;
+    std::size_t at(const char *n) const
+    {
+        const auto it = idx.find(n);
+        return (it == idx.end()) ? names.size() : it->second;
     }
-    if (len != FSW_TLM_BYTES) {
-        return false;
+};
+
+TlmLayout make_layout(const F *f, std::size_t n, std::size_t bytes)
+{
+    TlmLayout l;
+    for (std::size_t i = 0; i < n; ++i) {
+        l.names.emplace_back(f[i].name);
+        l.types.push_back(f[i].t);
+        l.idx[f[i].name] = i;
+    }
+    l.bytes = bytes;
+    return l;
+}
+
+const TlmLayout &layout_v1()
+{
+    static const TlmLayout l = make_layout(kTlm, sizeof kTlm / sizeof kTlm[0], FSW_TLM_BYTES);
+    return l;
+}
+
+const TlmLayout &layout_rdv()
+{
+    static const TlmLayout l = [] {
+        TlmLayout r;
+        for (const TlmField &f : kTlmRdv) {
+            r.idx[f.name] = r.names.size();
+            r.names.emplace_back(f.name);
+            r.types.push_back(f.t);
+        }
+        r.bytes = kTlmRdvBytes;
+        return r;
+    }();
+    return l;
+}
+
+// Raw values of one encoded fsw_tlm_t in its layout (chosen by length); nullptr when the
+// length matches no layout or the bytes do not decode exactly.
+const TlmLayout *decode_values(const std::uint8_t *buf, std::size_t len, std::vector<std::int64_t> &v)
+{
+    const TlmLayout *l = (len == kTlmRdvBytes) ? &layout_rdv() : ((len == FSW_TLM_BYTES) ? &layout_v1() : nullptr);
+    if (l == nullptr) {
+        return nullptr;
     }
     fsw_rd_t r;
     fsw_rd_init(&r, buf, static_cast<std::uint32_t>(len));
-    for (const F &f : kTlm) {
-        std::int64_t v = 0;
-        if (f.t == 'q') { v = fsw_rd_i64(&r); }
-        if (f.t == 'u') { v = static_cast<std::int64_t>(fsw_rd_u32(&r)); }
-        if (f.t == 'i') { v = fsw_rd_i32(&r); }
-        out[f.name] = v;
+    v.resize(l->types.size());
+    for (std::size_t i = 0; i < l->types.size(); ++i) {
+        switch (l->types[i]) {
+        case 'q': v[i] = fsw_rd_i64(&r); break;
+        case 'u': v[i] = static_cast<std::int64_t>(fsw_rd_u32(&r)); break;
+        case 'i': v[i] = fsw_rd_i32(&r); break;
+        case 'h': v[i] = static_cast<std::int64_t>(fsw_rd_u16(&r)); break;
+        default: v[i] = static_cast<std::int64_t>(fsw_rd_u8(&r)); break;
+        }
     }
-    return !r.err && r.pos == len;
+    return (!r.err && r.pos == len) ? l : nullptr;
+}
+
+std::int64_t val(const TlmLayout &l, const std::vector<std::int64_t> &v, const char *name)
+{
+    const std::size_t i = l.at(name);
+    return (i < v.size()) ? v[i] : 0;
+}
+
+}  // namespace
+
+bool decode_fsw_tlm(const std::uint8_t *buf, std::size_t len, std::map<std::string, std::int64_t> &out)
+{
+    std::vector<std::int64_t> v;
+    const TlmLayout *l = decode_values(buf, len, v);
+    if (l == nullptr) {
+        return false;
+    }
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        out[l->names[i]] = v[i];
+    }
+    return true;
 }
 
 MetricsTap::MetricsTap(lcm_t *lcm, double tail_from_s) : lcm_(lcm), tail_from_s_(tail_from_s)
@@ -121,9 +181,9 @@ const char *const kImpFlags[] = {"INFEASIBLE", "NO_SOLUTION", "MARGINAL", "NAV_S
 const char *const kImpModes[] = {"IDLE", "PLANNING", "ARMED", "FIRING", "FINAL", "DONE",
                                  "INFEASIBLE_MODE", "NO_SOLUTION_MODE", "ABORTED", "FAULT"};
 
-void rdv_tlm(Metrics &m, std::map<std::string, std::int64_t> &d, double ts)
+void rdv_tlm(Metrics &m, const TlmLayout &l, const std::vector<std::int64_t> &v, double ts)
 {
-    const auto h = static_cast<std::uint32_t>(d["imp_health"]);
+    const auto h = static_cast<std::uint32_t>(val(l, v, "imp_health"));
     m.imp_health_sticky |= h;
     for (std::uint32_t b = 0; b < 7u; ++b) {
         if ((h & (IMP_H_INFEASIBLE << b)) != 0u && m.t_first.count(kImpFlags[b]) == 0u) {
@@ -132,9 +192,9 @@ void rdv_tlm(Metrics &m, std::map<std::string, std::int64_t> &d, double ts)
     }
     if ((h & IMP_H_STUCK_OFF) != 0u && m.t_first.count("STUCK_OFF") == 0u) { m.t_first["STUCK_OFF"] = ts; }
     if ((h & IMP_H_STUCK_ON) != 0u && m.t_first.count("STUCK_ON") == 0u) { m.t_first["STUCK_ON"] = ts; }
-    m.max_iters_xy = std::max(m.max_iters_xy, static_cast<std::uint32_t>(d["imp_iters_xy"]));
-    m.max_iters_z = std::max(m.max_iters_z, static_cast<std::uint32_t>(d["imp_iters_z"]));
-    const auto mode = static_cast<std::uint32_t>(d["imp_mode"]);
+    m.max_iters_xy = std::max(m.max_iters_xy, static_cast<std::uint32_t>(val(l, v, "imp_iters_xy")));
+    m.max_iters_z = std::max(m.max_iters_z, static_cast<std::uint32_t>(val(l, v, "imp_iters_z")));
+    const auto mode = static_cast<std::uint32_t>(val(l, v, "imp_mode"));
     // The START plan's delta-v: a_nom * sum over the axes of (T1 + T - T2), from the first
     // telemetry that shows the committed plan (ARMED), T = t_f - t0.
     if (mode == IMP_MODE_ARMED && m.plan_dv_mps < 0.0 && m.omega_radps > 0.0 && m.t0_step >= 0) {
@@ -142,11 +202,15 @@ void rdv_tlm(Metrics &m, std::map<std::string, std::int64_t> &d, double ts)
         const double T = static_cast<double>(m.tf_step - m.t0_step) * dt;
         double s = 0.0;
         for (const char *ax : {"x", "y", "z"}) {
-            const double t1 = static_cast<double>(d[std::string("imp_t1_") + ax]) / 536870912.0 / m.omega_radps;
-            const double t2 = static_cast<double>(d[std::string("imp_t2_") + ax]) / 536870912.0 / m.omega_radps;
+            const double t1 = static_cast<double>(val(l, v, (std::string("imp_t1_") + ax).c_str())) / 536870912.0 / m.omega_radps;
+            const double t2 = static_cast<double>(val(l, v, (std::string("imp_t2_") + ax).c_str())) / 536870912.0 / m.omega_radps;
             s += t1 + T - t2;
         }
         m.plan_dv_mps = m.a_nom_mps2 * s;
+        for (const char *ax : {"x", "y", "z"}) {
+            const std::int64_t k2 = val(l, v, (std::string("imp_on2_step_") + ax).c_str());
+            if (m.burn2_step < 0 || k2 < m.burn2_step) { m.burn2_step = k2; }
+        }
     }
     if (mode < 10u) {
         m.imp_modes_seen |= 1u << mode;
@@ -201,7 +265,10 @@ void MetricsTap::on_cmd(const lcm_recv_buf_t *rb, const char *, void *user)
         return;
     }
     if (self->m_.rdv) {
-        if (c.n_counts > 12 && c.counts[12] != 0) { ++self->m_.thr_on_steps; }
+        if (c.n_counts > 12 && c.counts[12] != 0) {
+            ++self->m_.thr_on_steps;
+            if (self->m_.t_first.count("ABORTED") != 0u) { ++self->m_.on_after_abort; }
+        }
     } else {
         for (int i = 0; i < 2 && i < c.n_counts; ++i) {
             self->m_.peak_bdot_degs = std::fmax(self->m_.peak_bdot_degs, std::fabs(c.counts[i] * kActLsb) / kDeg);
@@ -219,23 +286,28 @@ void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
         return;
     }
     Metrics &m = self->m_;
-    std::map<std::string, std::int64_t> d;
-    if (!decode_fsw_tlm(f.tlm, static_cast<std::size_t>(f.tlm_len), d)) {
+    const TlmLayout *l = decode_values(f.tlm, static_cast<std::size_t>(f.tlm_len), self->last_);
+    if (l == nullptr) {
         ++m.tlm_bad;
         return;
     }
-    m.tlm = d;
+    self->last_layout_ = l;
+    const std::vector<std::int64_t> &v = self->last_;
+    const double ts = static_cast<double>(f.utime) * 1e-6;
+    const auto health = static_cast<std::uint32_t>(val(*l, v, "health"));
     if (m.rdv) {
-        rdv_tlm(m, d, static_cast<double>(f.utime) * 1e-6);
+        rdv_tlm(m, *l, v, ts);
+    } else {
+        const auto oh = static_cast<std::uint32_t>(val(*l, v, "obs_health"));
+        m.k_hat_final = 0.01 * static_cast<double>(val(*l, v, "obs_kappa")) / 268435456.0;
+        m.obs_health_sticky |= oh;
+        if (m.t_persist_s < 0.0 && (oh & OBS_H_CMD_LIMIT_PERSIST) != 0u) {
+            m.t_persist_s = ts;
+        }
     }
-    m.k_hat_final = 0.01 * static_cast<double>(d["obs_kappa"]) / 268435456.0;
-    m.obs_health_sticky |= static_cast<std::uint32_t>(d["obs_health"]);
-    if (m.t_persist_s < 0.0 && (static_cast<std::uint32_t>(d["obs_health"]) & OBS_H_CMD_LIMIT_PERSIST) != 0u) {
-        m.t_persist_s = static_cast<double>(f.utime) * 1e-6;
-    }
-    if (m.t_first_fx_s < 0.0 && (static_cast<std::uint32_t>(d["health"]) & 0xFFu) != 0u) {
-        m.t_first_fx_s = static_cast<double>(f.utime) * 1e-6;
-        m.first_fx_bits = static_cast<std::uint32_t>(d["health"]) & 0xFFu;
+    if (m.t_first_fx_s < 0.0 && (health & 0xFFu) != 0u) {
+        m.t_first_fx_s = ts;
+        m.first_fx_bits = health & 0xFFu;
     }
     m.bridge = {{"dups", f.dups}, {"stale", f.stale}, {"gaps", f.gaps}, {"rejected", f.rejected},
                 {"nonfinite_rej", f.nonfinite_rej}, {"range_rej", f.range_rej}, {"missed", f.missed},
@@ -255,8 +327,21 @@ void MetricsTap::on_ack(const lcm_recv_buf_t *rb, const char *, void *user)
     ++self->m_.ack_n;
 }
 
+const Metrics &MetricsTap::m() const
+{
+    if (last_layout_ != nullptr) {
+        const auto *l = static_cast<const TlmLayout *>(last_layout_);
+        m_.tlm.clear();
+        for (std::size_t i = 0; i < last_.size(); ++i) {
+            m_.tlm[l->names[i]] = last_[i];
+        }
+    }
+    return m_;
+}
+
 std::string MetricsTap::summary() const
 {
+    (void)m();
     std::ostringstream o;
     char b[160];
     auto line = [&](const char *k, double v, const char *fmt) {
@@ -268,6 +353,7 @@ std::string MetricsTap::summary() const
         line("miss_v_mps", m_.miss_v_mps, "%.6f");
         line("dv_used_mps", m_.dv_used_mps, "%.4f");
         line("plan_dv_mps", m_.plan_dv_mps, "%.4f");
+        line("first_burn2_step", static_cast<double>(m_.burn2_step), "%.0f");
         line("max_iters_xy", m_.max_iters_xy, "%.0f");
         line("max_iters_z", m_.max_iters_z, "%.0f");
         line("interlock_violations", m_.violations, "%.0f");

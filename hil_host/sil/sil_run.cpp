@@ -77,10 +77,23 @@ void configure_metrics(MetricsTap &mt, const sim::Scenario &scn)
 
 namespace {
 
+// The scenario's impulse boot table with its operator overrides.
+imp_params_t boot_imp(const sim::Scenario &scn)
+{
+    imp_params_t t = bridge::boot_imp_table(scn.fsw.table);
+    if (scn.fsw.cal_enable >= 0) {
+        t.cal_enable = static_cast<std::uint8_t>(scn.fsw.cal_enable);
+    }
+    return t;
+}
+
 std::unique_ptr<bridge::Backend> make_ref_backend(const sim::Scenario &scn, FswKind kind)
 {
     if (scn.plant == "cw") {
-        throw std::invalid_argument("no reference FSW backend for plant cw in this build");
+        if (kind != FswKind::Ref) {
+            throw std::invalid_argument("plant cw: only --fsw fixed or ref");
+        }
+        return std::unique_ptr<bridge::Backend>(new bridge::RefImpBackend(boot_imp(scn)));
     }
     const obs_params_t t = bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
     return std::unique_ptr<bridge::Backend>(new bridge::RefObsBackend(t, kind == FswKind::RefPerAxis));
@@ -93,7 +106,7 @@ std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scena
     std::unique_ptr<bridge::InProcessFswBackend> be;
     std::uint32_t period = 0u;
     if (scn.plant == "cw") {
-        const imp_params_t t = bridge::boot_imp_table(scn.fsw.table);
+        const imp_params_t t = boot_imp(scn);
         period = t.period_us;
         be.reset(new bridge::InProcessFswBackend(t));
     } else {

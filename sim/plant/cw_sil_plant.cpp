@@ -46,6 +46,9 @@ void CwSilPlant::reset(const Scenario &scn)
     for (int i = 0; i < 6; ++i) {
         x0(i) = scn.cw.x0[static_cast<std::size_t>(i)];
     }
+    // x0 is given at x0_epoch_s (e.g. the plan epoch t0 of the paper's example); the plant starts
+    // at time 0 from the free-drift state that reaches it (no thrust is commanded before t0).
+    x0 = CwPlant::phi(-scn.cw.x0_epoch_s, scn.cw.omega_radps) * x0;
     cw_.reset(new CwPlant(cw_config(scn), x0));
     mask_ = 0u;
     start_.fill(0u);

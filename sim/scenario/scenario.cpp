@@ -313,8 +313,9 @@ void parse_cw_root(const YAML::Node &root, const Reader &r, Scenario &s)
     }
     s.duration_s = r.number(root["duration_s"], "duration_s", 0.0, 1.0e6);
     if (const YAML::Node c = root["cw"]) {
-        r.check_keys(c, "cw", {"omega_radps", "a_nom_mps2", "x0", "eps_c", "eps", "t_min_us", "min_on", "subtick_us",
-                               "stuck_off", "stuck_on", "nav"});
+        r.check_keys(c, "cw", {"omega_radps", "a_nom_mps2", "x0", "x0_epoch_s", "eps_c", "eps", "t_min_us", "min_on",
+                               "subtick_us", "stuck_off", "stuck_on", "nav"});
+        if (c["x0_epoch_s"]) { s.cw.x0_epoch_s = r.number(c["x0_epoch_s"], "cw.x0_epoch_s", 0.0, 1.0e5); }
         if (c["omega_radps"]) { s.cw.omega_radps = r.number(c["omega_radps"], "cw.omega_radps", 8.0e-4, 1.2e-3); }
         if (c["a_nom_mps2"]) { s.cw.a_nom_mps2 = r.number(c["a_nom_mps2"], "cw.a_nom_mps2", 1e-4, 10.0); }
         if (const YAML::Node x = c["x0"]) {
@@ -358,7 +359,10 @@ void parse_cw_root(const YAML::Node &root, const Reader &r, Scenario &s)
         }
     }
     if (const YAML::Node f = root["fsw"]) {
-        r.check_keys(f, "fsw", {"table"});
+        r.check_keys(f, "fsw", {"table", "cal_enable"});
+        if (f["cal_enable"]) {
+            s.fsw.cal_enable = static_cast<int>(r.integer(f["cal_enable"], "fsw.cal_enable", 0, 1));
+        }
         if (f["table"]) {
             s.fsw.table = r.text(f["table"], "fsw.table");
             if (s.fsw.table != "imp_default" && s.fsw.table != "imp_1s" && s.fsw.table != "imp_sub1ms") {

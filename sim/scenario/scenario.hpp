@@ -42,6 +42,7 @@ struct FswSetup {
     std::string table = "obs_50hz_phys";      // obs_50hz_phys | obs_50hz_paper | obs_5hz_paper | obs_paper_printed
     double k_hat0 = 0.0;                      // K-hat(0) in s^-2; 0 = the table's value
     double bdot_max_degps = 0.0;              // command vector limit; 0 = the table's value
+    int cal_enable = -1;                      // plant cw: thrust calibration 0 off / 1 on; -1 = the table's
 };
 
 // Link and sensor faults injected by the plant node (spec 00 §8; 10-observer S0-9). Rates are
@@ -84,6 +85,7 @@ struct CwSetup {
     double omega_radps = 1.131367e-3;         // orbit rate (400 km circular by default)
     double a_nom_mps2 = 0.04;                 // nominal acceleration per thruster
     std::array<double, 6> x0{{5000.0, -1.0, 4000.0, -1.0, 4000.0, -1.0}};   // x, x', y, y', z, z' [m, m/s]
+    double x0_epoch_s = 0.0;                  // x0 is the state at this time (free drift before it)
     double eps_c = 0.0;                       // common thrust-level error
     std::array<double, 6> eps{};              // per-thruster level error (+x, -x, +y, -y, +z, -z)
     std::uint32_t t_min_us = 20000u;          // minimum on-time
