@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# README command 1: the main job. Installs what is missing, builds the host tools, and runs a SIL
-# scenario as separate processes over udpm LCM on loopback (logger, bridge with the fixed-point
+# README command 1: the main job. Installs what is missing, builds the host tools, and runs SIL
+# scenarios as separate processes over udpm LCM on loopback (logger, bridge with the fixed-point
 # flight code, plant), then writes the summary and the plots.
 #
-#   tools/run.sh [SCENARIO.yaml ...]     default: sim/scenarios/s0-7_nominal_mphys.yaml
+#   tools/run.sh [SCENARIO.yaml ...]
+#       default: sim/scenarios/s0-7_nominal_mphys.yaml (sail detumbling, the observer) and
+#                sim/scenarios/rendezvous_example.yaml (terminal rendezvous, the impulse scheduler)
 #
 # Output per scenario: build/run/<scenario file name>/ with run.lcmlog (replay: lcm-logplayer),
 # summary.txt, summary.json and the PNG plots. Environment: SIL_PORT (default 7667),
@@ -15,7 +17,7 @@ bash tools/bootstrap.sh
 
 scenarios=("$@")
 if ((${#scenarios[@]} == 0)); then
-    scenarios=(sim/scenarios/s0-7_nominal_mphys.yaml)
+    scenarios=(sim/scenarios/s0-7_nominal_mphys.yaml sim/scenarios/rendezvous_example.yaml)
 fi
 
 echo "=== build (host preset: the SIL executable and the LCM Python bindings)"
