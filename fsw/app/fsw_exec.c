@@ -13,6 +13,20 @@
  * RENDEZVOUS: the impulse scheduler runs in its mode (initialised on entry); a stale nav sample
  * is never a SAFE trigger, because the scheduler flies a dropout open loop by design (spec 50 §8
  * "nav dropout in FIRING"); its own faults (STUCK_*, INTERLOCK) raise FSW_H_MODULE.
+ *
+ * Tables: each mission has one fsw_table_t (DETUMBLE obs_tbl, RENDEZVOUS imp_tbl), booted from
+ * the C initialiser through the loader's checks and the module check, uploaded by
+ * fsw_table_upload (module check at once, veto on failure), committed at a step boundary and
+ * scrubbed every step (failure → SAFE). Impulse commit policy: the scheduler's state (timeline
+ * and burn log in valve-grid units, nav sample converted with the count scales, calibration,
+ * a plan job) is only meaningful with the table it was made with, and a swap must never touch a
+ * firing timeline. So a validated impulse table is committed only while the scheduler is not
+ * running a mission — the executive is outside RENDEZVOUS, or the scheduler is IDLE or terminal
+ * (DONE, INFEASIBLE, NO_SOLUTION, ABORTED, FAULT) — and otherwise waits as a READY candidate
+ * (FSW_H_TBL_PENDING each step; ground can ABORT to force it). A commit in RENDEZVOUS
+ * re-initialises the scheduler with the new table (IDLE, its telemetry carries the new revision;
+ * like a mode re-entry, this clears its latched faults — the executive's sticky health keeps the
+ * record).
  */
 #include "fsw_exec.h"
 #include "fx.h"
@@ -20,6 +34,10 @@
 #define OBS_FAULT_BITS (OBS_H_MEAS_LOST | OBS_H_CMD_LIMIT_PERSIST | OBS_H_COV_CLIP | 0xFFu)
 #define IMP_FAULT_BITS (IMP_H_STUCK_OFF | IMP_H_STUCK_ON | IMP_H_INTERLOCK | 0xFFu)
 #define IMP_ALL_THRUSTERS 0x3Fu
+#define IMP_WHY_BITS      12u     /* IMP_WHY_PERIOD .. IMP_WHY_NAV */
+
+FX_STATIC_ASSERT(exec_sa_boot_obs, FSW_BOOT_IMG_BYTES >= (FSW_TABLE_HDR_BYTES + FSW_TBL_OBS_PAYLOAD));
+FX_STATIC_ASSERT(exec_sa_boot_imp, FSW_BOOT_IMG_BYTES >= (FSW_TABLE_HDR_BYTES + FSW_TBL_IMP_PAYLOAD));
 
 static bool rdv(const fsw_t *f)
 {
@@ -93,6 +111,76 @@ static fsw_rc_t check_candidate(fsw_t *f, uint32_t *why)
     return rc;
 }
 
+/* Decodes the active impulse image into f->imp_p. */
+static bool load_imp_active(fsw_t *f)
+{
+    uint32_t len = 0u;
+    bool ok = false;
+    const uint8_t *pl = fsw_table_payload(&f->imp_tbl, &len);
+    if ((pl != NULL) &&
+        (fsw_imp_table_decode(pl, len, fsw_table_revision(&f->imp_tbl), &f->imp_cand) == FSW_OK)) {
+        f->imp_p = f->imp_cand;
+        ok = true;
+    }
+    f->have_imp_p = ok;
+    return ok;
+}
+
+/* The 8-bit veto detail of an imp_params_check why word (fsw_exec.h FSW_IMP_VETO_UNDECODED). */
+static uint32_t imp_veto_detail(uint32_t mwhy)
+{
+    uint32_t d = FSW_IMP_VETO_UNDECODED;
+    uint32_t bit = 1u;
+    uint32_t i;
+    for (i = 0u; (i < IMP_WHY_BITS) && (d == FSW_IMP_VETO_UNDECODED); i++) {
+        if ((mwhy & bit) != 0u) {
+            d = i + 1u;
+        }
+        bit <<= 1u;
+    }
+    return d;
+}
+
+/* The impulse table's module check: imp_params_check and the same-period rule. Returns the veto
+   detail, 0 when p passes. */
+static uint32_t imp_module_check(const fsw_t *f, const imp_params_t *p)
+{
+    uint32_t mwhy = 0u;
+    uint32_t d = 0u;
+    if (imp_params_check(p, &mwhy) != FSW_OK) {
+        d = imp_veto_detail(mwhy);
+    } else if (p->period_us != f->cfg.period_us) {
+        d = imp_veto_detail(IMP_WHY_PERIOD);
+    } else {
+        d = 0u;
+    }
+    return d;
+}
+
+/* Module check of a READY impulse candidate: decode, then imp_module_check; a failure vetoes it. */
+static fsw_rc_t check_imp_candidate(fsw_t *f, uint32_t *why)
+{
+    fsw_rc_t rc = FSW_OK;
+    uint32_t len = 0u;
+    const uint8_t *pl = fsw_table_candidate(&f->imp_tbl, &len);
+    if (pl == NULL) {
+        rc = FSW_ERR_STATE;
+    } else {
+        uint32_t d = FSW_IMP_VETO_UNDECODED;
+        /* The revision is informative; the check does not depend on it. */
+        if (fsw_imp_table_decode(pl, len, 0u, &f->imp_cand) == FSW_OK) {
+            d = imp_module_check(f, &f->imp_cand);
+        }
+        if (d != 0u) {
+            rc = fsw_table_veto(&f->imp_tbl, d, why);
+            if (rc == FSW_OK) {
+                rc = FSW_ERR_INVARIANT;
+            }
+        }
+    }
+    return rc;
+}
+
 /* The state every mission starts from: BOOT, no table, counters zero. */
 static void reset_common(fsw_t *f, const fsw_cfg_t *cfg)
 {
@@ -107,6 +195,7 @@ static void reset_common(fsw_t *f, const fsw_cfg_t *cfg)
     f->mode = FSW_MODE_BOOT;
     f->step = 0u;
     f->have_obs_p = false;
+    f->have_imp_p = false;
     f->tbl_rej_pending = false;
     for (i = 0u; i < FSW_RDV_N_SENS; i++) {
         f->last_good[i] = 0;
@@ -129,20 +218,33 @@ fsw_rc_t fsw_init_rdv(fsw_t *f, const fsw_cfg_t *cfg, const imp_params_t *boot_i
 {
     fsw_rc_t rc = FSW_ERR_ARG;
     if ((f != NULL) && (boot_imp != NULL) && cfg_ok(cfg, FSW_MISSION_RENDEZVOUS, FSW_MODE_RENDEZVOUS)) {
+        uint8_t *img = f->boot_img;   /* fsw_table_init resets imp_tbl, then copies it */
+        uint32_t n;
         uint32_t why = 0u;
         reset_common(f, cfg);
-        f->imp_p = *boot_imp;
-        f->imp_p.revision = revision;
-        rc = imp_params_check(&f->imp_p, &why);
-        if ((rc == FSW_OK) && (f->imp_p.period_us == cfg->period_us)) {
-            f->init_ok = true;
-            (void)imp_init(&f->imp_s, &f->imp_p, &f->imp_o);
+        n = fsw_imp_table_encode(boot_imp, revision, img, (uint32_t)sizeof(f->boot_img));
+        rc = fsw_table_init(&f->imp_tbl, &FSW_TBL_DESC_IMP, img, n, &why);
+        if ((rc == FSW_OK) && (fsw_table_payload(&f->imp_tbl, NULL) != NULL) && load_imp_active(f)) {
+            uint32_t d = imp_module_check(f, &f->imp_p);
+            if (d == 0u) {
+                f->init_ok = true;
+                (void)imp_init(&f->imp_s, &f->imp_p, &f->imp_o);
+            } else {
+                f->have_imp_p = false;
+                f->tlm.tbl_reason = FSW_TBL_R_MODULE | (d << FSW_TBL_DETAIL_SHIFT);
+                rc = FSW_ERR_INVARIANT;
+            }
         } else {
-            rc = FSW_ERR_INVARIANT;
+            f->have_imp_p = false;
             f->tlm.tbl_reason = why;
+            if (rc == FSW_OK) {
+                rc = FSW_ERR_INVARIANT;
+            }
+        }
+        if (!f->init_ok) {
             fx_cnt_inc(&f->tlm.n_tbl_rej);
         }
-        f->tlm.tbl_revision = revision;
+        f->tlm.tbl_revision = fsw_table_revision(&f->imp_tbl);
     }
     return rc;
 }
@@ -180,24 +282,28 @@ fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const obs_params_t *boot_obs, 
     return rc;
 }
 
+const fsw_table_t *fsw_mission_table(const fsw_t *f)
+{
+    const fsw_table_t *t = NULL;
+    if (f != NULL) {
+        t = rdv(f) ? &f->imp_tbl : &f->obs_tbl;
+    }
+    return t;
+}
+
 fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why)
 {
     fsw_rc_t rc = FSW_ERR_ARG;
     uint32_t w = 0u;
-    if ((f != NULL) && (c != NULL) && rdv(f)) {
-        /* The RENDEZVOUS mission takes no table upload in this build: refused, nothing kept. */
-        w = FSW_TBL_R_UPLOAD_ID;
-        f->tbl_rej_pending = true;
-        f->tlm.tbl_reason = w;
-        fx_cnt_inc(&f->tlm.n_tbl_rej);
-        rc = FSW_ERR_STATE;
-    } else if ((f != NULL) && (c != NULL)) {
-        uint32_t before = f->obs_tbl.rejects;
-        rc = fsw_table_chunk(&f->obs_tbl, c, &w);
-        if ((rc == FSW_OK) && (f->obs_tbl.state == FSW_TBL_S_READY)) {
-            rc = check_candidate(f, &w);
+    if ((f != NULL) && (c != NULL)) {
+        /* The mission's table: a chunk for another table id is refused by its loader (UPLOAD_ID). */
+        fsw_table_t *t = rdv(f) ? &f->imp_tbl : &f->obs_tbl;
+        uint32_t before = t->rejects;
+        rc = fsw_table_chunk(t, c, &w);
+        if ((rc == FSW_OK) && (t->state == FSW_TBL_S_READY)) {
+            rc = rdv(f) ? check_imp_candidate(f, &w) : check_candidate(f, &w);
         }
-        if (f->obs_tbl.rejects != before) {
+        if (t->rejects != before) {
             f->tbl_rej_pending = true;
             f->tlm.tbl_reason = w;
             fx_cnt_inc(&f->tlm.n_tbl_rej);
@@ -364,15 +470,64 @@ static uint32_t next_mode(fsw_t *f, const fsw_in_t *in, uint32_t *hx)
     return m;
 }
 
-/* Step 1: a READY candidate becomes active at the step boundary; then the active image's
-   scrub. Returns the executive health bits of this part. */
-static uint32_t tables_at_boundary(fsw_t *f)
+/* True when the impulse scheduler runs no mission that a table swap could disturb: the
+   executive is outside RENDEZVOUS (the scheduler is re-initialised on entry), or the scheduler
+   (its last output) is IDLE or in a terminal mode. */
+static bool imp_quiescent(const fsw_t *f)
+{
+    bool q = true;
+    if (f->mode == FSW_MODE_RENDEZVOUS) {
+        switch (f->imp_o.tlm.mode) {
+        case IMP_MODE_IDLE:
+        case IMP_MODE_DONE:
+        case IMP_MODE_INFEASIBLE:
+        case IMP_MODE_NO_SOLUTION:
+        case IMP_MODE_ABORTED:
+        case IMP_MODE_FAULT:
+            q = true;
+            break;
+        default:
+            q = false;   /* PLANNING, ARMED, FIRING, FINAL: the commit waits */
+            break;
+        }
+    }
+    return q;
+}
+
+/* RENDEZVOUS step 1: a READY impulse candidate is committed when the scheduler is quiescent
+   (re-initialised with it in RENDEZVOUS), else it waits; then the active image's scrub. */
+static uint32_t imp_tables_at_boundary(fsw_t *f)
 {
     uint32_t hx = 0u;
-    if (rdv(f)) {
-        /* The impulse table is the boot table (no upload path in this build). */
-        hx = f->init_ok ? 0u : FSW_H_NO_TABLE;
-    } else if (fsw_table_commit(&f->obs_tbl)) {
+    if (f->imp_tbl.state == FSW_TBL_S_READY) {
+        if (!imp_quiescent(f)) {
+            hx |= FSW_H_TBL_PENDING;
+        } else if (fsw_table_commit(&f->imp_tbl) && load_imp_active(f)) {
+            f->init_ok = true;
+            hx |= FSW_H_TBL_NEW;
+            fx_cnt_inc(&f->tlm.n_tbl_acc);
+            if (f->mode == FSW_MODE_RENDEZVOUS) {
+                (void)imp_init(&f->imp_s, &f->imp_p, &f->imp_o);
+            }
+        } else {
+            /* not reached: a READY candidate always commits and decodes (checked at upload) */
+        }
+    }
+    if (!f->have_imp_p) {
+        hx |= FSW_H_NO_TABLE;
+    }
+    if ((f->mode != FSW_MODE_BOOT) && (fsw_table_scrub(&f->imp_tbl) != FSW_OK)) {
+        hx |= FSW_H_SCRUB;
+    }
+    return hx;
+}
+
+/* DETUMBLE step 1: a READY observer candidate becomes active at the step boundary; then the
+   active image's scrub. */
+static uint32_t obs_tables_at_boundary(fsw_t *f)
+{
+    uint32_t hx = 0u;
+    if (fsw_table_commit(&f->obs_tbl)) {
         uint32_t i;
         int8_t old_ls[OBS_NZ];
         bool same_scale = f->have_obs_p;
@@ -391,15 +546,21 @@ static uint32_t tables_at_boundary(fsw_t *f)
                 (void)obs_init(&f->obs_s, &f->obs_p, &f->obs_o);
             }
         }
-    } else {
-        /* no candidate to commit */
     }
-    if ((!rdv(f)) && (!f->have_obs_p)) {
+    if (!f->have_obs_p) {
         hx |= FSW_H_NO_TABLE;
     }
-    if ((!rdv(f)) && (f->mode != FSW_MODE_BOOT) && (fsw_table_scrub(&f->obs_tbl) != FSW_OK)) {
+    if ((f->mode != FSW_MODE_BOOT) && (fsw_table_scrub(&f->obs_tbl) != FSW_OK)) {
         hx |= FSW_H_SCRUB;
     }
+    return hx;
+}
+
+/* Step 1: the mission's table at the step boundary (commit, scrub) and a refusal since the last
+   step. Returns the executive health bits of this part. */
+static uint32_t tables_at_boundary(fsw_t *f)
+{
+    uint32_t hx = rdv(f) ? imp_tables_at_boundary(f) : obs_tables_at_boundary(f);
     if (f->tbl_rej_pending) {
         hx |= FSW_H_TBL_REJ;
         f->tbl_rej_pending = false;
@@ -465,12 +626,13 @@ static void fill_tlm(fsw_t *f, const fsw_in_t *in, uint32_t mod_h, fsw_out_t *ou
     f->tlm.mode = out->mode;
     f->tlm.health = out->health;
     f->tlm.health_sticky |= out->health;
-    if (!rdv(f)) {
-        if (f->obs_tbl.rejects != 0u) {
-            f->tlm.tbl_reason = f->obs_tbl.last_reason;
+    {
+        const fsw_table_t *t = rdv(f) ? &f->imp_tbl : &f->obs_tbl;
+        if (t->rejects != 0u) {
+            f->tlm.tbl_reason = t->last_reason;
         }
-        f->tlm.tbl_revision = fsw_table_revision(&f->obs_tbl);
-        f->tlm.n_scrub_err = f->obs_tbl.scrub_errs;
+        f->tlm.tbl_revision = fsw_table_revision(t);
+        f->tlm.n_scrub_err = t->scrub_errs;
     }
     f->tlm.host_missed = in->host_missed;
     f->tlm.host_rejected = in->host_rejected;

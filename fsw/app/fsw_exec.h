@@ -4,10 +4,11 @@
  * candidate tables, mode, counters): a static object in a board image or a bridge member.
  * Two instances never interact.
  *
- * Step order (spec 00 §3.3): step counter → table commit at the step boundary → table scrub →
- * accept inputs (range + status; invalid channel keeps its last good value and is marked
- * stale) → mode manager → observer (DETUMBLE only) → actuator counts (safe values outside
- * DETUMBLE) → health aggregation → telemetry.
+ * Step order (spec 00 §3.3): step counter → table commit at the step boundary (RENDEZVOUS: only
+ * while the impulse scheduler is idle or terminal) → table scrub → accept inputs (range +
+ * status; invalid channel keeps its last good value and is marked stale) → mode manager →
+ * observer (DETUMBLE) or impulse scheduler (RENDEZVOUS) → actuator counts (safe values outside
+ * the mission mode) → health aggregation → telemetry.
  *
  * Missions (fsw_cfg_t.mission) and their channel maps:
  *   DETUMBLE (sail platform, spec 10): the observer in mode DETUMBLE.
@@ -81,12 +82,25 @@
 #define FSW_H_MODULE         (0x00010000u)  /* a module reports a fault bit (see obs_health) */
 #define FSW_H_NO_TABLE       (0x00020000u)  /* no valid module table (boot table refused) */
 #define FSW_H_TC_REJ         (0x00040000u)  /* a telecommand was refused this step (wrong mode) */
+#define FSW_H_TBL_PENDING    (0x00080000u)  /* RENDEZVOUS: a validated impulse table waits for the
+                                               scheduler to leave PLANNING/ARMED/FIRING/FINAL */
 
 /* Table registry. */
 #define FSW_TBL_ID_OBS       0x0B01u
 #define FSW_TBL_OBS_LAYOUT   1u
 #define FSW_TBL_OBS_PAYLOAD  646u          /* bytes; fsw_obs_table.c documents the layout */
 #define FSW_TBL_ID_IMP       0x0B04u
+#define FSW_TBL_IMP_LAYOUT   1u
+#define FSW_TBL_IMP_PAYLOAD  176u          /* bytes; fsw_imp_table.c documents the layout */
+/* Boot image staging: the larger of the two mission tables. */
+#define FSW_BOOT_IMG_BYTES   (FSW_TABLE_HDR_BYTES + \
+                              ((FSW_TBL_OBS_PAYLOAD > FSW_TBL_IMP_PAYLOAD) ? FSW_TBL_OBS_PAYLOAD : FSW_TBL_IMP_PAYLOAD))
+/* Detail of a MODULE veto of the impulse table (reason word bits 8..15): imp_params_check's why
+   word has 12 bits, so the detail is 1 + the index of its lowest set IMP_WHY_* bit (1 PERIOD,
+   2 ITER, 3 TOL, 4 RHO, 5 ALPHA, 6 SCALE, 7 TAU, 8 LEAD, 9 GRID, 10 CAL, 11 FD, 12 NAV), the
+   executive's own same-period check gives 1 (PERIOD), and 0xFF a candidate that did not decode
+   (or a failure without a why bit). */
+#define FSW_IMP_VETO_UNDECODED 0xFFu
 
 /* Telemetry layout version carried beside the encoded bytes (fsw_tlm_frame_t). */
 #define FSW_TLM_LAYOUT_VERSION  0x00010001u   /* DETUMBLE mission (fsw_tlm_formats.json) */
@@ -127,7 +141,7 @@ typedef struct {
     uint32_t n_tbl_acc;      /* table candidates committed */
     uint32_t n_tbl_rej;      /* table uploads refused (loader or module veto) */
     uint32_t tbl_reason;     /* reason word of the latest refusal (fsw_table.h) */
-    uint32_t tbl_revision;   /* active observer table revision */
+    uint32_t tbl_revision;   /* active table revision (the mission's: observer or impulse) */
     uint32_t n_scrub_err;
     uint32_t n_safe;         /* SAFE entries */
     uint32_t n_mode_rej;     /* refused mode commands */
@@ -162,7 +176,11 @@ typedef struct {
     obs_params_t obs_p;
     obs_params_t obs_cand;           /* scratch: candidate decoded for its module check */
     bool         tbl_rej_pending;    /* a refusal since the last step (FSW_H_TBL_REJ) */
-    uint8_t      boot_img[FSW_TABLE_HDR_BYTES + FSW_TBL_OBS_PAYLOAD];   /* boot image staging */
+    uint8_t      boot_img[FSW_BOOT_IMG_BYTES];   /* boot image staging (either mission) */
+    /* RENDEZVOUS: the impulse table (loader images; imp_p below is the decoded active table) */
+    fsw_table_t  imp_tbl;
+    bool         have_imp_p;
+    imp_params_t imp_cand;           /* scratch: candidate decoded for its module check */
     /* modules */
     obs_state_t  obs_s;
     obs_out_t    obs_o;
@@ -183,13 +201,23 @@ typedef struct {
  * table that fails its checks leaves the executive in BOOT → SAFE with FSW_H_NO_TABLE.
  */
 fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const obs_params_t *boot_obs, uint32_t revision);
-/* The RENDEZVOUS mission (cfg->mission == FSW_MISSION_RENDEZVOUS): the impulse scheduler with
-   its boot table, checked by imp_params_check (FSW_ERR_INVARIANT and SAFE when it fails). */
+/* The RENDEZVOUS mission (cfg->mission == FSW_MISSION_RENDEZVOUS): the impulse scheduler. Like
+   fsw_init, the boot table (boot_imp, e.g. &IMP_TBL_DEFAULT) is encoded into an image and loaded
+   through the loader's checks, then decoded and checked by imp_params_check and the same-period
+   rule. A refusal leaves BOOT → SAFE with FSW_H_NO_TABLE and returns the loader's code
+   (FSW_ERR_RANGE, ...) or FSW_ERR_INVARIANT for the module check; FSW_ERR_ARG on a bad cfg. */
 fsw_rc_t fsw_init_rdv(fsw_t *f, const fsw_cfg_t *cfg, const imp_params_t *boot_imp, uint32_t revision);
 void     fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out);
-/* One upload chunk, between steps. A completed candidate is decoded and module-checked at
-   once; it becomes active at the next fsw_step. *why gets the loader's reason word. */
+/* One upload chunk for the mission's table (DETUMBLE: observer, RENDEZVOUS: impulse), between
+   steps. A completed candidate is decoded and module-checked at once; *why gets the loader's
+   reason word. DETUMBLE: active at the next fsw_step. RENDEZVOUS: active at the first step
+   boundary at which the scheduler is not running a mission (executive outside RENDEZVOUS, or
+   scheduler IDLE, DONE, INFEASIBLE, NO_SOLUTION, ABORTED, FAULT); until then the candidate waits
+   (FSW_H_TBL_PENDING, further chunks BUSY). In RENDEZVOUS the commit re-initialises the
+   scheduler with the new table (IDLE). */
 fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why);
+/* The loader of the mission's table (for acks: cand_got, state). Never NULL for a non-NULL f. */
+const fsw_table_t *fsw_mission_table(const fsw_t *f);
 
 /* Encodes t little-endian in its mission's layout (DETUMBLE: FSW_TLM_BYTES, fsw_tlm_formats.json;
    RENDEZVOUS: FSW_TLM_RDV_BYTES, fsw_tlm_formats_rdv.json). Returns the bytes written, 0 if cap
@@ -205,5 +233,15 @@ uint32_t fsw_obs_table_encode(const obs_params_t *p, uint32_t revision, uint8_t 
    into a scratch struct and copy on success). */
 fsw_rc_t fsw_obs_table_decode(const uint8_t *payload, uint32_t len, uint32_t revision,
                               obs_params_t *p);
+
+/* Impulse table image (fsw_imp_table.c): every imp_params_t field but `revision`, which the
+   header carries. Encode returns the image bytes (FSW_TABLE_HDR_BYTES + FSW_TBL_IMP_PAYLOAD), 0
+   if cap is too small or p/img is NULL. Decode takes the payload only (FSW_ERR_ARG for a wrong
+   length or NULL) and sets p->revision = revision; in place, so on failure *p is partly written
+   and must not be used (callers decode into a scratch struct and copy on success). */
+extern const fsw_table_desc_t FSW_TBL_DESC_IMP;
+uint32_t fsw_imp_table_encode(const imp_params_t *p, uint32_t revision, uint8_t *img, uint32_t cap);
+fsw_rc_t fsw_imp_table_decode(const uint8_t *payload, uint32_t len, uint32_t revision,
+                              imp_params_t *p);
 
 #endif /* FSW_APP_EXEC_H */

@@ -190,12 +190,14 @@ bool InProcessFswBackend::table_chunk(const TableChunk &c, TableAck &ack)
     std::uint32_t why = 0u;
     const std::uint32_t rej0 = f_->tlm.n_tbl_rej;
     const fsw_rc_t rc = fsw_table_upload(f_.get(), &ch, &why);
-    ack.bytes_received = static_cast<std::int32_t>(f_->obs_tbl.cand_got);
+    const fsw_table_t *t = fsw_mission_table(f_.get());   // the mission's table (observer or impulse)
+    ack.bytes_received = static_cast<std::int32_t>(t->cand_got);
     if (f_->tlm.n_tbl_rej != rej0 || rc != FSW_OK) {
         ack.result = kTableRejected;
         ack.reason = static_cast<std::int32_t>(why & 0xFFFFu);
-    } else if (f_->obs_tbl.state == FSW_TBL_S_READY) {
-        ack.result = kTableAccepted;   // validated; active from the next step
+    } else if (t->state == FSW_TBL_S_READY) {
+        ack.result = kTableAccepted;   // validated; active from the next step (RENDEZVOUS: the
+                                       // first one with the scheduler idle or terminal)
         ack.bytes_received = c.total_len;
     } else {
         ack.result = kTablePartial;

@@ -1,4 +1,5 @@
-"""python -m tools.impulse {paper [--check] | ctable [--check] | mc ...} (from the repo root)."""
+"""python -m tools.impulse {paper [--check] | ctable [--check] | mc ... |
+   image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE | --all DIR)} (from the repo root)."""
 import argparse
 import sys
 
@@ -13,7 +14,18 @@ def main(argv=None):
     t.add_argument("--check", action="store_true")
     from . import mc
     mc.add_parser(sub)
+    im = sub.add_parser("image", help="write binary impulse-table images (header + payload) of the boot tables")
+    im.add_argument("--table", choices=["imp_default", "imp_1s", "imp_sub1ms"])
+    im.add_argument("--all", metavar="DIR", help="write DIR/<name>.bin for all three tables")
+    im.add_argument("-o", metavar="FILE", help="output image (with --table)")
+    im.add_argument("--revision", type=int, default=1, help="header revision (default 1, as the boot tables)")
+    im.add_argument("--set", action="append", metavar="FIELD=INT",
+                    help="override an imp_params_t field with a raw integer before the CRC (repeatable; "
+                         "FIELD[i]=INT for one vector entry, hdr.FIELD=INT for a header word)")
     a = ap.parse_args(argv)
+    if a.cmd == "image":
+        from . import image
+        return image.main(a)
     if a.cmd == "paper":
         from . import paper
         return paper.check() if a.check else paper.run()

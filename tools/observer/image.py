@@ -18,10 +18,9 @@ documented in fsw/app/fsw_obs_table.c (spec 00 §3.2, 10-observer §4.6):
 `hdr.layout_version`, `hdr.length`, `hdr.revision` and `hdr.crc` replace header words after the
 CRC is computed (for tests of the loader's header/CRC checks).
 """
-import os
 import re
-import struct
-import zlib
+
+from tools.table import image_writer
 
 from . import ctable
 from . import design as dz
@@ -29,7 +28,6 @@ from . import design as dz
 TABLE_ID = 0x0B01
 LAYOUT_VERSION = 1
 PAYLOAD_BYTES = 646
-HDR = struct.Struct("<HHIII")
 NX, NZ, NU, NY = 6, 7, 2, 2
 EST = {"OBS_EST_EKF": 0, "OBS_EST_CONST_W": 2}
 
@@ -46,11 +44,9 @@ PAYLOAD = [
     ("phi0", "i", NX * NX), ("phik", "i", NX * NX), ("gam0", "i", NX * NU), ("gamk", "i", NX * NU),
     ("d", "i", NU * NX), ("w", "i", NZ * NY),
 ]
-PAYLOAD_STRUCT = struct.Struct("<" + "".join("%d%s" % (n, c) for _, c, n in PAYLOAD))
-assert PAYLOAD_STRUCT.size == PAYLOAD_BYTES, PAYLOAD_STRUCT.size
-FIELDS = {f: (c, n) for f, c, n in PAYLOAD}
+LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES)
+FIELDS = LAYOUT.fields
 NAMES = [name for name, _ in ctable.TABLES]
-HDR_FIELDS = ("table_id", "layout_version", "length", "revision", "crc")
 
 _TABS = None
 
@@ -135,96 +131,15 @@ def params(name):
     return p
 
 
-def _apply(p, hdr, sets):
-    for s in sets or ():
-        m = re.fullmatch(r"\s*([\w.]+)(?:\[(\d+)\])?\s*=\s*(-?(?:0[xX][0-9a-fA-F]+|\d+))\s*", s)
-        if m is None:
-            raise SystemExit("image: --set %r: expected FIELD=INT or FIELD[i]=INT" % s)
-        f, idx, v = m.group(1), m.group(2), int(m.group(3), 0)
-        if f == "revision":   # obs_params_t.revision travels in the header, not the payload
-            f = "hdr.revision"
-        if f.startswith("hdr."):
-            if f[4:] not in HDR_FIELDS or idx is not None:
-                raise SystemExit("image: --set %r: header fields are %s" % (s, ", ".join("hdr." + h for h in HDR_FIELDS)))
-            hdr[f[4:]] = v
-            continue
-        if f not in FIELDS:
-            raise SystemExit("image: --set %r: no field %r; fields: %s" % (s, f, ", ".join(FIELDS)))
-        n = FIELDS[f][1]
-        if idx is None:
-            if n != 1:
-                raise SystemExit("image: --set %r: %s has %d entries; use %s[i]=INT" % (s, f, n, f))
-            p[f] = v
-        else:
-            i = int(idx)
-            if n == 1 or i >= n:
-                raise SystemExit("image: --set %r: index out of range for %s (%d entries)" % (s, f, n))
-            p[f] = list(p[f])
-            p[f][i] = v
-
-
-def pack_payload(p):
-    flat = []
-    for f, c, n in PAYLOAD:
-        v = p[f]
-        flat += (list(v) if n > 1 else [v])
-    try:
-        return PAYLOAD_STRUCT.pack(*flat)
-    except struct.error as e:
-        raise SystemExit("image: a field value does not fit its wire type: %s" % e)
-
-
 def build(name, revision=1, sets=None):
     """Complete image (header + payload) of boot table NAME."""
-    p = params(name)
-    hdr_over = {}
-    _apply(p, hdr_over, sets)
-    pl = pack_payload(p)
-    hdr = {"table_id": TABLE_ID, "layout_version": LAYOUT_VERSION, "length": len(pl), "revision": revision,
-           "crc": zlib.crc32(pl) & 0xFFFFFFFF}
-    hdr.update(hdr_over)
-    try:
-        head = HDR.pack(*(hdr[k] for k in HDR_FIELDS))
-    except struct.error as e:
-        raise SystemExit("image: a header value does not fit its wire type: %s" % e)
-    return head + pl
+    return LAYOUT.build(params(name), revision, sets)
 
 
 def decode(img):
     """(header dict, params dict) of an image, with Python struct only; raises ValueError if malformed."""
-    if len(img) < HDR.size:
-        raise ValueError("image shorter than its %d-byte header" % HDR.size)
-    hdr = dict(zip(HDR_FIELDS, HDR.unpack_from(img)))
-    pl = img[HDR.size:]
-    if hdr["length"] != len(pl) or len(pl) != PAYLOAD_BYTES:
-        raise ValueError("payload is %d bytes, header says %d, layout %d" % (len(pl), hdr["length"], PAYLOAD_BYTES))
-    hdr["crc_ok"] = (zlib.crc32(pl) & 0xFFFFFFFF) == hdr["crc"]
-    vals = list(PAYLOAD_STRUCT.unpack(pl))
-    p = {}
-    for f, c, n in PAYLOAD:
-        p[f] = vals[:n] if n > 1 else vals[0]
-        del vals[:n]
-    return hdr, p
+    return LAYOUT.decode(img)
 
 
 def main(args):
-    if bool(args.all) == bool(args.table):
-        raise SystemExit("image: give exactly one of --table NAME (with -o FILE) or --all DIR")
-    if args.all:
-        if args.set:
-            raise SystemExit("image: --set applies to one --table, not --all")
-        os.makedirs(args.all, exist_ok=True)
-        jobs = [(n, os.path.join(args.all, n + ".bin")) for n in NAMES]
-    else:
-        if not args.o:
-            raise SystemExit("image: --table needs -o FILE")
-        jobs = [(args.table, args.o)]
-    for name, path in jobs:
-        img = build(name, args.revision, args.set)
-        with open(path, "wb") as fh:
-            fh.write(img)
-        hdr, _ = decode(img)
-        print("%s: %s, %d bytes, table_id 0x%04X layout %d length %d revision %d crc 0x%08X%s"
-              % (path, name, len(img), hdr["table_id"], hdr["layout_version"], hdr["length"], hdr["revision"],
-                 hdr["crc"], "" if hdr["crc_ok"] else " (CRC overridden: does not match the payload)"))
-    return 0
+    return image_writer.main(args, LAYOUT, NAMES, params)

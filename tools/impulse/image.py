@@ -1,0 +1,100 @@
+"""Binary impulse-table images from the table generator: an independent oracle for the flight decoder.
+
+    python -m tools.impulse image --table NAME [--revision N] [--set FIELD=INT ...] -o FILE
+    python -m tools.impulse image --all DIR [--revision N]
+
+NAME is imp_default, imp_1s or imp_sub1ms (the boot tables IMP_TBL_DEFAULT, IMP_TBL_1S and
+IMP_TBL_SUB1MS of fsw/impulse/imp_tables.c). The integers are the ones `ctable` writes into those C
+initialisers: `params()` takes them from ctable's own computation (`ctable.fields`, the function
+that renders the initialisers) and requires its field list to be exactly this layout plus
+`revision`. They are packed here with Python struct, independently of the C encoder, in the wire
+layout documented in fsw/app/fsw_imp_table.c (spec 00 §3.2, 50-impulse §5.7):
+
+    header  <HHIII  table_id 0x0B04, layout_version 1, payload length 176, revision,
+                    zlib.crc32(payload)
+    payload 176 bytes, little-endian, field by field in imp_params_t order without `revision`
+            (PAYLOAD below; the spare bytes are on the wire and must be zero)
+
+`--set FIELD=INT` replaces one field by its imp_params_t name with a raw integer before the CRC
+(`FIELD[i]=INT` for one entry of alpha_q30 or spare2). Header pseudo-fields `hdr.table_id`,
+`hdr.layout_version`, `hdr.length`, `hdr.revision` and `hdr.crc` replace header words after the
+CRC is computed (for tests of the loader's header/CRC checks); `revision` is `hdr.revision`.
+"""
+import re
+
+from tools.table import image_writer
+
+from . import ctable
+
+TABLE_ID = 0x0B04
+LAYOUT_VERSION = 1
+PAYLOAD_BYTES = 176
+NTHR = 6
+
+# (imp_params_t field, struct code, count) in wire order (fsw/app/fsw_imp_table.c header comment)
+PAYLOAD = [
+    ("period_us", "I", 1), ("subtick_us", "I", 1), ("t_min_us", "I", 1), ("plan_lead", "I", 1),
+    ("replan_period", "I", 1), ("t_stop", "I", 1), ("nav_timeout", "I", 1),
+    ("max_iter", "B", 1), ("plan_iter_per_step", "B", 1), ("pivot_ratio_sh", "B", 1), ("k_tau_sh", "B", 1),
+    ("r_tol_lsb", "i", 1), ("pivot_min_q26", "i", 1), ("rho_warn_q28", "i", 1), ("rho_reject_q28", "i", 1),
+    ("dv_tie_q28", "i", 1), ("tauf_min_q29", "i", 1), ("tauf_max_q29", "i", 1), ("w_v_q28", "i", 1),
+    ("alpha_q30", "i", NTHR),
+    ("k_pos_m", "i", 1), ("k_pos_sh", "B", 1), ("k_vel_sh", "B", 1), ("k_tick_sh", "B", 1), ("spare", "B", 1),
+    ("k_vel_m", "i", 1), ("k_tau_m", "i", 1), ("k_tick_m", "i", 1),
+    ("omega_nradps", "I", 1), ("a_nom_umps2", "I", 1),
+    ("k_gtau_m", "i", 1), ("k_gtick_m", "i", 1), ("k_gtau_sh", "B", 1), ("k_gtick_sh", "B", 1),
+    ("cal_enable", "B", 1), ("cal_pool", "B", 1),
+    ("dv_cal_min_q28", "i", 1), ("cal_gate_q30", "i", 1), ("u_uncal_q30", "i", 1), ("u_cal_q30", "i", 1),
+    ("miss_flag_q28", "i", 1),
+    ("fd_window", "I", 1), ("fd_frac_q30", "i", 1), ("fd_persist", "B", 1), ("spare2", "B", 3),
+    ("nav_gate_pos_q28", "i", 1), ("nav_gate_vel_q28", "i", 1), ("nav_gate_acc_q28", "i", 1),
+    ("replan_gain_q30", "i", 1),
+]
+LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES)
+FIELDS = LAYOUT.fields
+# tool name -> (C name, period_us, subtick_us), in ctable's order
+TABLES = {n.lower().replace("imp_tbl_", "imp_"): (n, per, sub) for n, per, sub, _ in ctable.TABLES}
+NAMES = list(TABLES)
+
+
+def _c_value(s):
+    """int or [int] of one C initialiser value as ctable writes it ("100000u", "-3", "{1, 2}")."""
+    s = s.strip()
+    if s.startswith("{"):
+        return [_c_value(x) for x in s[1:-1].split(",") if x.strip()]
+    m = re.fullmatch(r"(-?\d+)u?", s)
+    if m is None:
+        raise ValueError("cannot parse initialiser value %r" % s)
+    return int(m.group(1))
+
+
+def params(name):
+    """Raw integer fields of boot table NAME, from ctable's computation of the C initialiser."""
+    if name not in TABLES:
+        raise SystemExit("image: unknown table %r; choose from %s" % (name, ", ".join(NAMES)))
+    _, period_us, subtick_us = TABLES[name]
+    vals = [(f, _c_value(v)) for f, v, _ in ctable.fields(period_us, subtick_us)]
+    names = [f for f, _ in vals]
+    if names != [f for f, _, _ in PAYLOAD] + ["revision"]:
+        raise AssertionError("image: ctable's imp_params_t fields %s differ from the wire layout %s + revision"
+                             % (names, [f for f, _, _ in PAYLOAD]))
+    p = dict(vals)
+    p.pop("revision")
+    for f, (_, n) in FIELDS.items():
+        if (n > 1) != isinstance(p[f], list) or (n > 1 and len(p[f]) != n):
+            raise AssertionError("image: %s: ctable gives %r, the layout has %d entries" % (f, p[f], n))
+    return p
+
+
+def build(name, revision=1, sets=None):
+    """Complete image (header + payload) of boot table NAME."""
+    return LAYOUT.build(params(name), revision, sets)
+
+
+def decode(img):
+    """(header dict, params dict) of an image, with Python struct only; raises ValueError if malformed."""
+    return LAYOUT.decode(img)
+
+
+def main(args):
+    return image_writer.main(args, LAYOUT, NAMES, params)
