@@ -48,6 +48,7 @@ struct TlmLayout {
     std::vector<char> types;                      // 'q' i64, 'u' u32, 'i' i32, 'h' u16, 'b' u8
     std::size_t bytes = 0;
     std::map<std::string, std::size_t> idx;
+    std::size_t i_health = 0, i_obs_health = 0, i_obs_kappa = 0;   // read on every message
     std::size_t at(const char *n) const
     {
         const auto it = idx.find(n);
@@ -64,6 +65,9 @@ TlmLayout make_layout(const F *f, std::size_t n, std::size_t bytes)
         l.idx[f[i].name] = i;
     }
     l.bytes = bytes;
+    l.i_health = l.at("health");
+    l.i_obs_health = l.at("obs_health");
+    l.i_obs_kappa = l.at("obs_kappa");
     return l;
 }
 
@@ -83,6 +87,7 @@ const TlmLayout &layout_rdv()
             r.types.push_back(f.t);
         }
         r.bytes = kTlmRdvBytes;
+        r.i_health = r.at("health");
         return r;
     }();
     return l;
@@ -109,12 +114,6 @@ const TlmLayout *decode_values(const std::uint8_t *buf, std::size_t len, std::ve
         }
     }
     return (!r.err && r.pos == len) ? l : nullptr;
-}
-
-std::int64_t val(const TlmLayout &l, const std::vector<std::int64_t> &v, const char *name)
-{
-    const std::size_t i = l.at(name);
-    return (i < v.size()) ? v[i] : 0;
 }
 
 }  // namespace
@@ -181,9 +180,35 @@ const char *const kImpFlags[] = {"INFEASIBLE", "NO_SOLUTION", "MARGINAL", "NAV_S
 const char *const kImpModes[] = {"IDLE", "PLANNING", "ARMED", "FIRING", "FINAL", "DONE",
                                  "INFEASIBLE_MODE", "NO_SOLUTION_MODE", "ABORTED", "FAULT"};
 
-void rdv_tlm(Metrics &m, const TlmLayout &l, const std::vector<std::int64_t> &v, double ts)
+// Indices of the RENDEZVOUS fields the metrics read every step (looked up once).
+struct RdvIdx {
+    std::size_t health, mode, iters_xy, iters_z, t1[3], t2[3], on2[3];
+};
+
+const RdvIdx &rdv_idx()
 {
-    const auto h = static_cast<std::uint32_t>(val(l, v, "imp_health"));
+    static const RdvIdx ix = [] {
+        const TlmLayout &l = layout_rdv();
+        RdvIdx r{};
+        r.health = l.at("imp_health");
+        r.mode = l.at("imp_mode");
+        r.iters_xy = l.at("imp_iters_xy");
+        r.iters_z = l.at("imp_iters_z");
+        const char *ax[3] = {"x", "y", "z"};
+        for (int a = 0; a < 3; ++a) {
+            r.t1[a] = l.at((std::string("imp_t1_") + ax[a]).c_str());
+            r.t2[a] = l.at((std::string("imp_t2_") + ax[a]).c_str());
+            r.on2[a] = l.at((std::string("imp_on2_step_") + ax[a]).c_str());
+        }
+        return r;
+    }();
+    return ix;
+}
+
+void rdv_tlm(Metrics &m, const TlmLayout &, const std::vector<std::int64_t> &v, double ts)
+{
+    const RdvIdx &ix = rdv_idx();
+    const auto h = static_cast<std::uint32_t>(v[ix.health]);
     m.imp_health_sticky |= h;
     for (std::uint32_t b = 0; b < 7u; ++b) {
         if ((h & (IMP_H_INFEASIBLE << b)) != 0u && m.t_first.count(kImpFlags[b]) == 0u) {
@@ -192,25 +217,23 @@ void rdv_tlm(Metrics &m, const TlmLayout &l, const std::vector<std::int64_t> &v,
     }
     if ((h & IMP_H_STUCK_OFF) != 0u && m.t_first.count("STUCK_OFF") == 0u) { m.t_first["STUCK_OFF"] = ts; }
     if ((h & IMP_H_STUCK_ON) != 0u && m.t_first.count("STUCK_ON") == 0u) { m.t_first["STUCK_ON"] = ts; }
-    m.max_iters_xy = std::max(m.max_iters_xy, static_cast<std::uint32_t>(val(l, v, "imp_iters_xy")));
-    m.max_iters_z = std::max(m.max_iters_z, static_cast<std::uint32_t>(val(l, v, "imp_iters_z")));
-    const auto mode = static_cast<std::uint32_t>(val(l, v, "imp_mode"));
+    m.max_iters_xy = std::max(m.max_iters_xy, static_cast<std::uint32_t>(v[ix.iters_xy]));
+    m.max_iters_z = std::max(m.max_iters_z, static_cast<std::uint32_t>(v[ix.iters_z]));
+    const auto mode = static_cast<std::uint32_t>(v[ix.mode]);
     // The START plan's delta-v: a_nom * sum over the axes of (T1 + T - T2), from the first
     // telemetry that shows the committed plan (ARMED), T = t_f - t0.
     if (mode == IMP_MODE_ARMED && m.plan_dv_mps < 0.0 && m.omega_radps > 0.0 && m.t0_step >= 0) {
         const double dt = (m.truth_n > 1) ? (m.t_last_s / static_cast<double>(m.truth_n - 1)) : 0.0;
         const double T = static_cast<double>(m.tf_step - m.t0_step) * dt;
         double s = 0.0;
-        for (const char *ax : {"x", "y", "z"}) {
-            const double t1 = static_cast<double>(val(l, v, (std::string("imp_t1_") + ax).c_str())) / 536870912.0 / m.omega_radps;
-            const double t2 = static_cast<double>(val(l, v, (std::string("imp_t2_") + ax).c_str())) / 536870912.0 / m.omega_radps;
+        for (int a = 0; a < 3; ++a) {
+            const double t1 = static_cast<double>(v[ix.t1[a]]) / 536870912.0 / m.omega_radps;
+            const double t2 = static_cast<double>(v[ix.t2[a]]) / 536870912.0 / m.omega_radps;
             s += t1 + T - t2;
-        }
-        m.plan_dv_mps = m.a_nom_mps2 * s;
-        for (const char *ax : {"x", "y", "z"}) {
-            const std::int64_t k2 = val(l, v, (std::string("imp_on2_step_") + ax).c_str());
+            const std::int64_t k2 = v[ix.on2[a]];
             if (m.burn2_step < 0 || k2 < m.burn2_step) { m.burn2_step = k2; }
         }
+        m.plan_dv_mps = m.a_nom_mps2 * s;
     }
     if (mode < 10u) {
         m.imp_modes_seen |= 1u << mode;
@@ -294,12 +317,12 @@ void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
     self->last_layout_ = l;
     const std::vector<std::int64_t> &v = self->last_;
     const double ts = static_cast<double>(f.utime) * 1e-6;
-    const auto health = static_cast<std::uint32_t>(val(*l, v, "health"));
+    const auto health = static_cast<std::uint32_t>(v[l->i_health]);
     if (m.rdv) {
         rdv_tlm(m, *l, v, ts);
     } else {
-        const auto oh = static_cast<std::uint32_t>(val(*l, v, "obs_health"));
-        m.k_hat_final = 0.01 * static_cast<double>(val(*l, v, "obs_kappa")) / 268435456.0;
+        const auto oh = static_cast<std::uint32_t>(v[l->i_obs_health]);
+        m.k_hat_final = 0.01 * static_cast<double>(v[l->i_obs_kappa]) / 268435456.0;
         m.obs_health_sticky |= oh;
         if (m.t_persist_s < 0.0 && (oh & OBS_H_CMD_LIMIT_PERSIST) != 0u) {
             m.t_persist_s = ts;
