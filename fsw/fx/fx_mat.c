@@ -5,6 +5,7 @@
  * end, so a result is correctly rounded whenever ACC_OVF stays clear (spec 00 §1.6).
  */
 #include "fx.h"
+#include "fx_inline.h"
 
 /* Powers of two used as int64 scale factors (written out: no signed value is ever shifted). */
 #define P2_30_I64 INT64_C(1073741824)       /* 2^30 */
@@ -253,5 +254,142 @@ void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b
         }
     } else {
         back_substitute(ws, n, (qa + qx) - qb, x, st);
+    }
+}
+
+/* ------------------------------------------------------------------------- fast solve */
+
+/*
+ * fx_solve_fast: the elimination of fx_solve (same pivots, same reciprocals, same multipliers,
+ * same rounding of every update, bit for bit) with the rounding shifts inlined, and a back
+ * substitution that takes each x_i straight from the reciprocal: one product, one rounding, no
+ * correction step. Error analysis in fx.h and fsw/fx/README.md.
+ */
+
+/* Eliminate column k below the pivot: fx_solve's eliminate() with inline rounding. */
+static void eliminate_fast(fx_solve_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st)
+{
+    uint32_t i;
+    uint32_t j;
+    const int32_t *ak = &ws->a[(size_t)k * n];
+    int32_t rm = ws->rec[k].m;
+    uint32_t lsh = 30u - ws->rec[k].sh;
+    for (i = k + 1u; i < n; i++) {
+        int32_t *ai = &ws->a[(size_t)i * n];
+        /* |l| <= 2^30 + 1 (|a_ik| <= |pivot|, m rounded): held in int32 so each product is one
+           32 x 32 multiply */
+        int32_t l = (int32_t)fx_shr_rnd64_i((int64_t)ai[k] * (int64_t)rm, lsh, st);
+        ai[k] = 0;
+        for (j = k + 1u; j < n; j++) {
+            int64_t v = ((int64_t)ai[j] * P2_30_I64) - ((int64_t)l * (int64_t)ak[j]);
+            ai[j] = fx_rshift_sat_i(v, 30u, st);
+        }
+        {
+            int64_t v = ((int64_t)ws->b[i] * P2_30_I64) - ((int64_t)l * (int64_t)ws->b[k]);
+            ws->b[i] = fx_rshift_sat_i(v, 30u, st);
+        }
+    }
+}
+
+/* Number of bits of h (0 for 0), for h <= 2^33: 33 above 32 bits, else a bounded binary search
+   on 32-bit words (a 64-bit variable shift costs ~15 instructions on Cortex-M3). */
+static uint32_t bitlen34(uint64_t h)
+{
+    uint32_t t = 33u;
+    if ((h >> 32) == 0u) {
+        uint32_t v = (uint32_t)h;
+        uint32_t step = 16u;
+        uint32_t i;
+        t = 0u;
+        for (i = 0u; i < 5u; i++) {
+            if ((v >> step) != 0u) {
+                v >>= step;
+                t += step;
+            }
+            step >>= 1;
+        }
+        t += v;
+    }
+    return t;
+}
+
+/*
+ * x ~= s / d from the reciprocal r of d (1/d = m 2^(sh - 60)): s is rounded to 31 significant
+ * bits (s_hi = rnd(s / 2^t), |s_hi| in [2^30, 2^31] when t > 0), then x = rnd(s_hi m / 2^(60 - sh
+ * - t)). Relative error <= 2^-30 (m) + 2^-31 (s_hi) before the final rounding (1/2 LSB).
+ * Saturates with SAT_HI / SAT_LO outside int32.
+ */
+static int32_t quot_fast(int64_t s, const fx_recip_t *r, fx_status_t *st)
+{
+    uint64_t u = (s < 0) ? ((uint64_t)0 - (uint64_t)s) : (uint64_t)s;
+    uint32_t t = bitlen34(u >> 31);
+    int32_t sh_r = 60 - (int32_t)r->sh - (int32_t)t;
+    int32_t x;
+    fx_status_t ignore = 0u;   /* t <= 33, sh_r in [28, 60] below: shifts in range */
+    if ((t > 0u) && (sh_r < 28)) {
+        /* |s_hi| >= 2^30 and |m| >= 2^29: |x| >= 2^59 / 2^27 = 2^32 */
+        bool neg = (s < 0) != (r->m < 0);
+        *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
+        x = neg ? INT32_MIN : INT32_MAX;
+    } else {
+        int64_t s_hi = fx_shr_rnd64_i(s, t, &ignore);
+        x = fx_rshift_sat_i(s_hi * (int64_t)r->m, (uint32_t)sh_r, st);
+    }
+    return x;
+}
+
+/* x_i = (b_i 2^e - sum_{j>i} a_ij x_j) / a_ii, the sum exact in int64, bottom up. */
+static void back_substitute_fast(const fx_solve_ws_t *ws, uint32_t n, uint32_t b_shift, int32_t *x,
+                                 fx_status_t *st)
+{
+    uint32_t k;
+    int64_t scale = fx_pow2_64(b_shift, st);
+    for (k = 0u; k < n; k++) {
+        uint32_t ii = n - 1u - k;
+        const int32_t *ai = &ws->a[(size_t)ii * n];
+        uint32_t j;
+        int64_t s = (int64_t)ws->b[ii] * scale;
+        for (j = ii + 1u; j < n; j++) {
+            s = fx_add64_sat_i(s, -((int64_t)ai[j] * (int64_t)x[j]), st);
+        }
+        x[ii] = quot_fast(s, &ws->rec[ii], st);
+    }
+}
+
+void fx_solve_fast(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+                   uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
+{
+    uint32_t i;
+    uint32_t k;
+    bool fail = false;
+    if ((n < 1u) || (n > FX_SOLVE_NMAX) || (qa > FX_Q_MAX) || (qb > FX_Q_MAX) || (qx > FX_Q_MAX) ||
+        (qb > (qa + qx)) || ((qa + qx - qb) > 31u)) {
+        *st |= FX_ST_ARG;
+        fail = true;
+    } else {
+        for (i = 0u; i < (n * n); i++) {
+            ws->a[i] = a[i];
+        }
+        for (i = 0u; i < n; i++) {
+            ws->b[i] = b[i];
+        }
+    }
+    for (k = 0u; (!fail) && (k < n); k++) {
+        uint32_t best = pivot_rows(ws, n, k);
+        if ((best == 0u) || ((int64_t)best < (int64_t)pivot_min)) {
+            *st |= FX_ST_SINGULAR;
+            ws->rec[k].d = ws->a[(k * n) + k];
+            fail = true;
+        } else {
+            fx_recip_init(&ws->rec[k], ws->a[(k * n) + k], st);
+            eliminate_fast(ws, n, k, st);
+        }
+    }
+    if (fail) {
+        for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
+            x[i] = 0;
+        }
+    } else {
+        back_substitute_fast(ws, n, (qa + qx) - qb, x, st);
     }
 }

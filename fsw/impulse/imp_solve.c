@@ -10,6 +10,7 @@
  * attempt ends that attempt as failed (IMP_FAIL_FX), and the next pattern is tried.
  */
 #include "imp.h"
+#include "fx_inline.h"
 
 #define Q30_ONE      INT64_C(1073741824)              /* 1.0 in q30 */
 #define Q29_HALF     INT32_C(268435456)               /* 0.5 in q29: series threshold */
@@ -42,13 +43,13 @@ FX_STATIC_ASSERT(imp_sa_t, (IMP_T_Q + SH_T_TO_TRIG) == IMP_TRIG_Q);
    sigma^3/6 (1 - sigma^2/20 (1 - sigma^2/42 (1 - sigma^2/72))); truncation < 1e-11. */
 static int64_t tms_series(int64_t m_q30, fx_status_t *st)
 {
-    int64_t u = fx_shr_rnd64(m_q30 * m_q30, 30u, st);                         /* sigma^2 */
-    int64_t a = Q30_ONE - fx_shr_rnd64(u * K_INV72_Q32, 32u, st);
+    int64_t u = fx_shr_rnd64_i(m_q30 * m_q30, 30u, st);                         /* sigma^2 */
+    int64_t a = Q30_ONE - fx_shr_rnd64_i(u * K_INV72_Q32, 32u, st);
     int64_t cube;
-    a = Q30_ONE - fx_shr_rnd64(fx_shr_rnd64(u * a, 30u, st) * K_INV42_Q32, 32u, st);
-    a = Q30_ONE - fx_shr_rnd64(fx_shr_rnd64(u * a, 30u, st) * K_INV20_Q32, 32u, st);
-    cube = fx_shr_rnd64(m_q30 * u, 30u, st);
-    return fx_shr_rnd64(fx_shr_rnd64(cube * K_INV6_Q32, 32u, st) * a, 30u, st);
+    a = Q30_ONE - fx_shr_rnd64_i(fx_shr_rnd64_i(u * a, 30u, st) * K_INV42_Q32, 32u, st);
+    a = Q30_ONE - fx_shr_rnd64_i(fx_shr_rnd64_i(u * a, 30u, st) * K_INV20_Q32, 32u, st);
+    cube = fx_shr_rnd64_i(m_q30 * u, 30u, st);
+    return fx_shr_rnd64_i(fx_shr_rnd64_i(cube * K_INV6_Q32, 32u, st) * a, 30u, st);
 }
 
 void imp_trig(int32_t sig_q29, imp_trig_t *t, fx_status_t *st)
@@ -62,9 +63,9 @@ void imp_trig(int32_t sig_q29, imp_trig_t *t, fx_status_t *st)
     int64_t tms;
     fx_sincos(bam_h, &sh_q30, &ch_q30);
     /* sin = 2 sh ch, 1 - cos = 2 sh^2 (q60 products, one rounding to q30), cos = 1 - (1 - cos). */
-    t->s_q30 = fx_rshift_sat((int64_t)sh_q30 * (int64_t)ch_q30, 29u, st);
-    t->omc_q30 = fx_rshift_sat((int64_t)sh_q30 * (int64_t)sh_q30, 29u, st);
-    t->c_q30 = fx_sat32(Q30_ONE - (int64_t)t->omc_q30, st);
+    t->s_q30 = fx_rshift_sat_i((int64_t)sh_q30 * (int64_t)ch_q30, 29u, st);
+    t->omc_q30 = fx_rshift_sat_i((int64_t)sh_q30 * (int64_t)sh_q30, 29u, st);
+    t->c_q30 = fx_sat32_i(Q30_ONE - (int64_t)t->omc_q30, st);
     if (m < (uint32_t)Q29_HALF) {
         tms = tms_series((int64_t)m * 2, st);
         if (sig_q29 < 0) {
@@ -73,13 +74,13 @@ void imp_trig(int32_t sig_q29, imp_trig_t *t, fx_status_t *st)
     } else {
         tms = ((int64_t)sig_q29 * 2) - (int64_t)t->s_q30;
     }
-    t->tms_q30 = fx_sat32(tms, st);
+    t->tms_q30 = fx_sat32_i(tms, st);
 }
 
 /* q30 (int64) -> q28 with one rounding: v / 4. */
-static int32_t m28(int64_t v_q30, fx_status_t *st)
+FX_INLINE int32_t m28(int64_t v_q30, fx_status_t *st)
 {
-    return fx_rshift_sat(v_q30, SH_TRIG_TO_M, st);
+    return fx_rshift_sat_i(v_q30, SH_TRIG_TO_M, st);
 }
 
 void imp_psi(uint32_t axis, int32_t sig_q29, const imp_trig_t *t, int32_t *psi_q28, fx_status_t *st)
@@ -91,8 +92,8 @@ void imp_psi(uint32_t axis, int32_t sig_q29, const imp_trig_t *t, int32_t *psi_q
     if (axis == 0u) {
         /* 4(1 - c) - 1.5 sigma^2 in q58: 4 omc = omc_q30 * 2^30; sigma^2 exact from q29. */
         int64_t sq = (int64_t)sig_q29 * (int64_t)sig_q29;
-        int64_t a = fx_shl64_chk(omc, 30u, st) - (sq + fx_shr_rnd64(sq, 1u, st));
-        psi_q28[0] = fx_rshift_sat(a, SH_ACC_TO_X, st);
+        int64_t a = fx_shl64_chk(omc, 30u, st) - (sq + fx_shr_rnd64_i(sq, 1u, st));
+        psi_q28[0] = fx_rshift_sat_i(a, SH_ACC_TO_X, st);
         psi_q28[1] = m28(sg - (4 * tms), st);       /* 4 s - 3 sigma = sigma - 4 (sigma - s) */
         psi_q28[2] = m28(-2 * tms, st);
         psi_q28[3] = m28(-2 * omc, st);
@@ -131,9 +132,9 @@ void imp_phie(uint32_t axis, int32_t sig_q29, const imp_trig_t *t, int32_t *col_
 }
 
 /* Entry v (q30, int64) as q28 in int64: rounded once, never saturated. */
-static int64_t e28(int64_t v_q30, fx_status_t *st)
+FX_INLINE int64_t e28(int64_t v_q30, fx_status_t *st)
 {
-    return fx_shr_rnd64(v_q30, SH_TRIG_TO_M, st);
+    return fx_shr_rnd64_i(v_q30, SH_TRIG_TO_M, st);
 }
 
 /* Exact int64 dot product of q28 entries held in int64 (|e| < 2^32: the largest Phi entry over
@@ -143,7 +144,7 @@ static int64_t row_dot(const int64_t *e_q28, const int32_t *x, uint32_t n, fx_st
     int64_t acc = 0;
     uint32_t i;
     for (i = 0u; i < n; i++) {
-        acc = fx_add64_sat(acc, e_q28[i] * (int64_t)x[i], st);
+        acc = fx_add64_sat_i(acc, e_q28[i] * (int64_t)x[i], st);
     }
     return acc;
 }
@@ -238,7 +239,7 @@ static void plan_setup(imp_ws_t *ws, const imp_problem_t *pr, fx_status_t *st)
     imp_phi_apply(pr->tauf_q29, &t, pr->x0_q28, y_q56, st);
     for (i = 0u; i < IMP_NX; i++) {
         int64_t a = fx_shl64_chk(y_q56[i], SH_XX_TO_ACC, st);
-        ws->px_q58[i] = fx_add64_sat(a, -fx_shl64_chk((int64_t)pr->xt_q28[i], SH_ACC_TO_X, st), st);
+        ws->px_q58[i] = fx_add64_sat_i(a, -fx_shl64_chk((int64_t)pr->xt_q28[i], SH_ACC_TO_X, st), st);
     }
     for (i = 0u; i < IMP_NAX; i++) {
         imp_psi(i, pr->tauf_q29, &t, ws->psif_q28[i], st);
@@ -266,7 +267,7 @@ static void attempt_setup(imp_ws_t *ws, const imp_problem_t *pr, uint32_t sub, u
         ws->sa1_q30[k] = (neg1 != 0u) ? fx_neg(a1, st) : a1;
         ws->sa2_q30[k] = (neg2 != 0u) ? fx_neg(a2, st) : a2;
         for (i = 0u; i < n; i++) {
-            ws->c_q58[i] = fx_add64_sat(ws->c_q58[i], (int64_t)ws->sa1_q30[k] * (int64_t)ws->psif_q28[r][i], st);
+            ws->c_q58[i] = fx_add64_sat_i(ws->c_q58[i], (int64_t)ws->sa1_q30[k] * (int64_t)ws->psif_q28[r][i], st);
         }
     }
 }
@@ -284,11 +285,11 @@ static void add_switch(imp_ws_t *ws, uint32_t r, uint32_t n, int32_t sig_q29, in
     imp_trig(sig_q29, &t, st);
     imp_psi(r, sig_q29, &t, v, st);
     for (i = 0u; i < n; i++) {
-        facc[i] = fx_add64_sat(facc[i], (int64_t)sa_f * (int64_t)v[i], st);
+        facc[i] = fx_add64_sat_i(facc[i], (int64_t)sa_f * (int64_t)v[i], st);
     }
     imp_phie(r, sig_q29, &t, v, st);
     for (i = 0u; i < n; i++) {
-        ws->j_q26[(i * n) + col] = fx_rshift_sat((int64_t)sa_j * (int64_t)v[i], SH_ACC_TO_J, st);
+        ws->j_q26[(i * n) + col] = fx_rshift_sat_i((int64_t)sa_j * (int64_t)v[i], SH_ACC_TO_J, st);
     }
 }
 
@@ -313,7 +314,7 @@ static uint32_t eval(imp_ws_t *ws, const imp_problem_t *pr, uint32_t sub, fx_sta
     }
     for (i = 0u; i < n; i++) {
         uint32_t a;
-        ws->f_q28[i] = fx_rshift_sat(facc[i], SH_ACC_TO_X, st);
+        ws->f_q28[i] = fx_rshift_sat_i(facc[i], SH_ACC_TO_X, st);
         a = fx_uabs(ws->f_q28[i]);
         fmax = (a > fmax) ? a : fmax;
     }
@@ -325,7 +326,7 @@ static uint32_t newton_solve(imp_ws_t *ws, const imp_params_t *p, uint32_t n, fx
 {
     fx_status_t sst = 0u;
     uint32_t res = IMP_FAIL_NONE;
-    fx_solve(&ws->sws, ws->j_q26, IMP_J_Q, ws->f_q28, IMP_X_Q, n, ws->d_q29, IMP_T_Q, p->pivot_min_q26, &sst);
+    fx_solve_fast(&ws->sws, ws->j_q26, IMP_J_Q, ws->f_q28, IMP_X_Q, n, ws->d_q29, IMP_T_Q, p->pivot_min_q26, &sst);
     if ((sst & FX_ST_SINGULAR) != 0u) {
         res = IMP_FAIL_SINGULAR;
     } else if (sst != 0u) {
@@ -451,10 +452,10 @@ static int32_t attempt_dv(const imp_ws_t *ws, int32_t tauf_q29, uint32_t nax, fx
     for (k = 0u; k < nax; k++) {
         int64_t a1 = (int64_t)fx_uabs(ws->sa1_q30[k]);
         int64_t a2 = (int64_t)fx_uabs(ws->sa2_q30[k]);
-        acc = fx_add64_sat(acc, a1 * (int64_t)ws->t1_q29[k], st);
-        acc = fx_add64_sat(acc, a2 * ((int64_t)tauf_q29 - (int64_t)ws->t2_q29[k]), st);
+        acc = fx_add64_sat_i(acc, a1 * (int64_t)ws->t1_q29[k], st);
+        acc = fx_add64_sat_i(acc, a2 * ((int64_t)tauf_q29 - (int64_t)ws->t2_q29[k]), st);
     }
-    return fx_rshift_sat(acc, SH_DV_TO_X, st);
+    return fx_rshift_sat_i(acc, SH_DV_TO_X, st);
 }
 
 static void start_times(imp_ws_t *ws, int32_t tauf_q29)
@@ -540,8 +541,8 @@ static bool impulsive_sub(imp_ws_t *ws, const imp_params_t *p, const imp_problem
         int32_t l1 = fx_neg(ws->d_q29[c1], st);             /* T1 after the step */
         int32_t l2 = ws->d_q29[c2];                         /* tau_f - T2 after the step */
         int32_t sum;
-        sol->dv1_q28[r] = fx_rshift_sat((int64_t)a * (int64_t)l1, SH_DV_TO_X, st);
-        sol->dv2_q28[r] = fx_rshift_sat((int64_t)a * (int64_t)l2, SH_DV_TO_X, st);
+        sol->dv1_q28[r] = fx_rshift_sat_i((int64_t)a * (int64_t)l1, SH_DV_TO_X, st);
+        sol->dv2_q28[r] = fx_rshift_sat_i((int64_t)a * (int64_t)l2, SH_DV_TO_X, st);
         sum = fx_add_sat(fx_abs(sol->dv1_q28[r], st), fx_abs(sol->dv2_q28[r], st), st);
         sol->rho_q28[r] = fx_div(sum, IMP_X_Q, pr->tauf_q29, IMP_T_Q, IMP_X_Q, st);
     }

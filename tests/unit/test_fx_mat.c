@@ -9,6 +9,11 @@
 
 #define NELEM(a) (sizeof(a) / sizeof((a)[0]))
 
+static int64_t abs64(int64_t v)
+{
+    return (v < 0) ? -v : v;
+}
+
 static int32_t small(uint64_t *s)
 {
     return (int32_t)((int64_t)(ut_rng_next(s) >> 36) - ((int64_t)1 << 27));
@@ -289,11 +294,173 @@ UT_TEST(dot_acc_and_shl64)
     UT_UEQ(st, FX_ST_ARG);
 }
 
+/* fx_solve_fast: exact cases, guards and argument checks as fx_solve. */
+UT_TEST(solve_fast_exact_cases)
+{
+    fx_solve_ws_t ws;
+    int32_t x[4];
+    fx_status_t st = 0u;
+    static const int32_t p4[16] = {0, 0, 1 << 28, 0, 1 << 28, 0, 0, 0, 0, 0, 0, 1 << 28, 0, 1 << 28, 0, 0};
+    static const int32_t b4[4] = {11, -22, 33, -44};
+    static const int32_t a2[4] = {2 << 28, 1 << 28, 1 << 28, 3 << 28};
+    static const int32_t b2[2] = {3 << 28, 5 << 28};
+    static const int32_t s2[4] = {1 << 27, 1 << 26, 1 << 28, 1 << 27};
+    fx_solve_fast(&ws, p4, 28u, b4, 28u, 4u, x, 28u, 1 << 18, &st);
+    UT_UEQ(st, 0u);
+    UT_EQ(x[0], -22);
+    UT_EQ(x[1], -44);
+    UT_EQ(x[2], 11);
+    UT_EQ(x[3], 33);
+    fx_solve_fast(&ws, a2, 28u, b2, 28u, 2u, x, 29u, 1 << 18, &st);
+    UT_UEQ(st, 0u);
+    UT_CHECK_LE(abs64((int64_t)x[0] - 429496730), 1);   /* 0.8 * 2^29 */
+    UT_CHECK_LE(abs64((int64_t)x[1] - 751619277), 1);   /* 1.4 * 2^29 */
+    x[0] = 5;
+    x[1] = 5;
+    fx_solve_fast(&ws, s2, 28u, b2, 28u, 2u, x, 28u, 1 << 18, &st);
+    UT_UEQ(st, FX_ST_SINGULAR);
+    UT_EQ(x[0], 0);
+    UT_EQ(x[1], 0);
+    st = 0u;
+    fx_solve_fast(&ws, a2, 28u, b2, 28u, 5u, x, 28u, 1, &st);
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    fx_solve_fast(&ws, a2, 28u, b2, 29u, 2u, x, 0u, 1, &st);   /* qb > qa + qx */
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    {
+        static const int32_t one[1] = {1000};
+        static const int32_t bb[1] = {3000};
+        static const int32_t tiny[1] = {1 << 18};
+        static const int32_t big[1] = {INT32_MAX};
+        static const int32_t nbig[1] = {-INT32_MAX};
+        fx_solve_fast(&ws, one, 0u, bb, 0u, 1u, x, 0u, 1000, &st);
+        UT_UEQ(st, 0u);
+        UT_EQ(x[0], 3);
+        fx_solve_fast(&ws, one, 0u, bb, 0u, 1u, x, 0u, 1001, &st);
+        UT_UEQ(st, FX_ST_SINGULAR);
+        UT_EQ(x[0], 0);
+        /* Quotients outside int32 saturate with the sign, as fx_solve's. */
+        st = 0u;
+        fx_solve_fast(&ws, tiny, 28u, big, 28u, 1u, x, 28u, 1 << 18, &st);
+        UT_UEQ(st, FX_ST_SAT_HI);
+        UT_EQ(x[0], INT32_MAX);
+        st = 0u;
+        fx_solve_fast(&ws, tiny, 28u, nbig, 28u, 1u, x, 28u, 1 << 18, &st);
+        UT_UEQ(st, FX_ST_SAT_LO);
+        UT_EQ(x[0], INT32_MIN);
+        st = 0u;
+        fx_solve(&ws, tiny, 28u, nbig, 28u, 1u, x, 28u, 1 << 18, &st);
+        UT_UEQ(st, FX_ST_SAT_LO);
+    }
+}
+
+/* fx_solve_fast runs fx_solve's elimination bit for bit (pivots, reciprocals, permutation, the
+   eliminated system), is odd and deterministic, and its x stays within a few LSB of fx_solve's
+   on well-conditioned systems (the back substitution's relative error is <= 1.5 2^-30). */
+UT_TEST(solve_fast_vs_solve)
+{
+    uint64_t seed = 99u;
+    uint32_t it;
+    int64_t worst = 0;
+    for (it = 0u; it < 600u; it++) {
+        fx_solve_ws_t w1;
+        fx_solve_ws_t w2;
+        int32_t a[16];
+        int32_t b[4];
+        int32_t nb[4];
+        int32_t x1[4];
+        int32_t x2[4];
+        int32_t x3[4];
+        int32_t x4[4];
+        uint32_t n = 1u + (it % 4u);
+        uint32_t i;
+        fx_status_t s1 = 0u;
+        fx_status_t s2 = 0u;
+        fx_status_t s3 = 0u;
+        bool dominant = (it % 3u) != 0u;
+        for (i = 0u; i < n * n; i++) {
+            a[i] = dominant ? (small(&seed) / 8) : (small(&seed) / 2);   /* |a| < 2^26: 2 headroom bits */
+        }
+        for (i = 0u; i < n; i++) {
+            if (dominant) {
+                a[(((i + it) % n) * n) + i] += ((i % 2u) != 0u) ? -((int32_t)1 << 28) : ((int32_t)1 << 28);
+            }
+            b[i] = small(&seed) * (int32_t)((it % 5u) + 1u);
+            nb[i] = -b[i];
+        }
+        fx_solve(&w1, a, 28u, b, 28u, n, x1, 28u, 1 << 18, &s1);
+        fx_solve_fast(&w2, a, 28u, b, 28u, n, x2, 28u, 1 << 18, &s2);
+        fx_solve_fast(&w2, a, 28u, nb, 28u, n, x4, 28u, 1 << 18, &s3);
+        /* odd: -b saturates the other way */
+        UT_CHECK_UEQ(s3, (s2 & (fx_status_t)~(FX_ST_SAT_HI | FX_ST_SAT_LO)) | ((s2 & FX_ST_SAT_HI) << 1) |
+                             ((s2 & FX_ST_SAT_LO) >> 1));
+        UT_CHECK_UEQ(s2 & (fx_status_t)~(FX_ST_SAT_HI | FX_ST_SAT_LO), s1 & (fx_status_t)~(FX_ST_SAT_HI | FX_ST_SAT_LO));
+        fx_solve_fast(&w2, a, 28u, b, 28u, n, x3, 28u, 1 << 18, &s3);
+        for (i = 0u; i < n * n; i++) {
+            UT_CHECK_EQ(w2.a[i], w1.a[i]);
+        }
+        for (i = 0u; (i < n) && ((s1 & FX_ST_SINGULAR) == 0u); i++) {
+            int64_t d = abs64((int64_t)x2[i] - (int64_t)x1[i]);
+            UT_CHECK_EQ(w2.b[i], w1.b[i]);
+            UT_CHECK_EQ(w2.rec[i].d, w1.rec[i].d);
+            UT_CHECK_EQ(w2.rec[i].m, w1.rec[i].m);
+            UT_CHECK_UEQ(w2.rec[i].sh, w1.rec[i].sh);
+            UT_CHECK_UEQ(w2.perm[i], w1.perm[i]);
+            UT_CHECK_EQ(x3[i], x2[i]);
+            if (s2 == 0u) {
+                UT_CHECK_EQ(x4[i], -x2[i]);
+            }
+            if ((s1 == 0u) && dominant) {
+                /* diagonally dominant: |u_ij / u_ii| small, the error hardly propagates */
+                UT_CHECK_LE(d, 2 + (abs64((int64_t)x1[i]) / ((int64_t)1 << 27)));
+                worst = (d > worst) ? d : worst;
+            }
+        }
+    }
+    UT_CHECK_LE(worst, 40);
+}
+
+/* Odd symmetry of fx_solve_fast: -b gives exactly -x. */
+UT_TEST(solve_fast_symmetry)
+{
+    uint64_t seed = 17u;
+    uint32_t it;
+    for (it = 0u; it < 300u; it++) {
+        fx_solve_ws_t ws;
+        int32_t a[16];
+        int32_t b[4];
+        int32_t nb[4];
+        int32_t x1[4];
+        int32_t x2[4];
+        uint32_t n = 1u + (it % 4u);
+        uint32_t i;
+        fx_status_t s1 = 0u;
+        fx_status_t s2 = 0u;
+        for (i = 0u; i < n * n; i++) {
+            a[i] = small(&seed) / 8;
+        }
+        for (i = 0u; i < n; i++) {
+            a[i * n + i] += (int32_t)1 << 28;
+            b[i] = small(&seed);
+            nb[i] = -b[i];
+        }
+        fx_solve_fast(&ws, a, 28u, b, 28u, n, x1, 27u, 1 << 18, &s1);
+        fx_solve_fast(&ws, a, 28u, nb, 28u, n, x2, 27u, 1 << 18, &s2);
+        for (i = 0u; i < n; i++) {
+            UT_CHECK_EQ(x2[i], -x1[i]);
+        }
+        UT_CHECK_UEQ(s1, 0u);
+        UT_CHECK_UEQ(s2, 0u);
+    }
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(dot_matvec_matmul_random), UT_CASE(accumulator_overflow), UT_CASE(kernel_args),
         UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact), UT_CASE(dot_acc_and_shl64),
+        UT_CASE(solve_fast_exact_cases), UT_CASE(solve_fast_vs_solve), UT_CASE(solve_fast_symmetry),
     };
     return UT_RUN("fx_mat", cases);
 }

@@ -14,6 +14,9 @@
  * backward error of <= 2^-1 LSB per entry and step, at most n-1 steps) and back substitution
  * rounds x_i once; a backward perturbation dA gives |dx|/|x| <= kappa |dA|/|A|, which with
  * |A|inf ~ 1 (2^28 LSB) and |x| < 2^28 LSB is <= kappa (n - 1)/2 LSB + 1/2 LSB < 2 n kappa.
+ * fx_solve_fast: the same elimination; its back substitution has a relative error <= 1.5 2^-30 per
+ * x_i (a backward perturbation of u_ii), i.e. kappa n 1.5 2^-30 |x| more. Tested bound
+ * 2 n kappa (1 + 2^-29 |x|inf) LSB, with x in q28 and in q30 (|x| up to 2^30 LSB).
  */
 #include "fx.h"
 #include "ut.h"
@@ -337,6 +340,109 @@ UT_TEST(solve_conditioned_systems)
            "max err / (n kappa) = %.3Lf (bound 2)\n", solved, worst_err, worst_kappa, worst_ratio);
 }
 
+UT_TEST(solve_fast_conditioned_systems)
+{
+    uint64_t seed = 2025u;
+    uint32_t it;
+    uint32_t solved = 0u;
+    long double worst_ratio = 0.0L;
+    long double worst_err = 0.0L;
+    long double worst_kappa = 0.0L;
+    for (it = 0u; it < SYSTEMS; it++) {
+        uint32_t n = 1u + (it % 4u);
+        long double u[4][4];
+        long double v[4][4];
+        long double a[4][4];
+        long double aq[4][4];
+        long double ainv[4][4];
+        long double xr[4];
+        long double bq[4];
+        long double kappa_t = powl(10.0L, 3.0L * (long double)(ut_rng_next(&seed) >> 11) / 9007199254740992.0L);
+        long double amax = 0.0L;
+        long double kappa;
+        int32_t ai[16];
+        int32_t bi[4];
+        int32_t x[4];
+        uint32_t qx = ((it % 2u) == 0u) ? QX : 30u;   /* q30: |x| up to 2^30 LSB, the relative term */
+        long double xmax = 0.0L;
+        fx_solve_ws_t ws;
+        fx_status_t st = 0u;
+        uint32_t i;
+        uint32_t j;
+        uint32_t k;
+        bool fits = true;
+        rand_orth(&seed, n, u);
+        rand_orth(&seed, n, v);
+        for (i = 0u; i < n; i++) {
+            for (j = 0u; j < n; j++) {
+                long double s = 0.0L;
+                for (k = 0u; k < n; k++) {
+                    long double sig = (n == 1u) ? 1.0L : powl(kappa_t, -(long double)k / (long double)(n - 1u));
+                    s += u[i][k] * sig * v[j][k];
+                }
+                a[i][j] = s;
+                amax = (fabsl(s) > amax) ? fabsl(s) : amax;
+            }
+        }
+        /* Entries scaled to |a| <= 0.9: q28 holds +-8, leaving the n-1 <= 3 headroom bits. */
+        for (i = 0u; i < n; i++) {
+            long double xt = (long double)(int64_t)(ut_rng_next(&seed) >> 11) / 4503599627370496.0L - 1.0L;
+            for (j = 0u; j < n; j++) {
+                ai[i * n + j] = (int32_t)llroundl(a[i][j] / amax * 0.9L * 268435456.0L);
+                aq[i][j] = (long double)ai[i * n + j] / 268435456.0L;
+            }
+            xr[i] = xt;
+        }
+        for (i = 0u; i < n; i++) {
+            long double s = 0.0L;
+            for (j = 0u; j < n; j++) {
+                s += aq[i][j] * xr[j];
+            }
+            bi[i] = (int32_t)llroundl(s * 268435456.0L);
+            bq[i] = (long double)bi[i] / 268435456.0L;
+        }
+        if (!inv_ld(n, aq, ainv)) {
+            continue;
+        }
+        kappa = norm_inf(n, aq) * norm_inf(n, ainv);
+        /* Reference x of the quantised system: x = inv(Aq) bq in long double. */
+        for (i = 0u; i < n; i++) {
+            long double s = 0.0L;
+            for (j = 0u; j < n; j++) {
+                s += ainv[i][j] * bq[j];
+            }
+            xr[i] = s * ((qx == QX) ? 268435456.0L : 1073741824.0L);
+            fits = fits && (fabsl(xr[i]) < 2.0e9L);
+            xmax = (fabsl(xr[i]) > xmax) ? fabsl(xr[i]) : xmax;
+        }
+        if (!fits) {
+            continue;
+        }
+        fx_solve_fast(&ws, ai, QA, bi, QA, n, x, qx, 1 << 18, &st);
+        UT_CHECK_UEQ(st, 0u);
+        for (i = 0u; i < n; i++) {
+            long double err = fabsl((long double)x[i] - xr[i]);
+            long double bound = 2.0L * (long double)n * kappa * (1.0L + xmax / 536870912.0L);
+            if (!(err <= bound)) {
+                UT_CHECK_EQ((int64_t)err, (int64_t)bound);
+                printf("  system %u n=%u kappa=%.1Lf err=%.2Lf LSB\n", it, n, kappa, err);
+            }
+            if (err / bound > worst_ratio) {
+                worst_ratio = err / bound;
+            }
+            if (err > worst_err) {
+                worst_err = err;
+                worst_kappa = kappa;
+            }
+        }
+        solved++;
+    }
+    UT_CHECK(solved > (SYSTEMS * 9u) / 10u);
+    printf("fx_solve_fast: %u systems (n = 1..4, kappa_inf 1..1e3, x in q28 and q30): max |x - x_ref| = %.2Lf LSB "
+           "(at kappa %.0Lf); max err / bound = %.3Lf (bound 2 n kappa (1 + 2^-29 |x|), <= 1)\n", solved, worst_err,
+           worst_kappa, worst_ratio);
+}
+
 UT_TEST(solve_singular_and_near_singular)
 {
     uint64_t seed = 77u;
@@ -364,6 +470,13 @@ UT_TEST(solve_singular_and_near_singular)
         UT_CHECK_UEQ(st & FX_ST_SINGULAR, FX_ST_SINGULAR);
         for (i = 0u; i < n; i++) {
             UT_CHECK_EQ(x[i], 0);
+            x[i] = 9;
+        }
+        st = 0u;
+        fx_solve_fast(&ws, a, 28u, b, 28u, n, x, 28u, 1 << 18, &st);   /* the same pivots */
+        UT_CHECK_UEQ(st & FX_ST_SINGULAR, FX_ST_SINGULAR);
+        for (i = 0u; i < n; i++) {
+            UT_CHECK_EQ(x[i], 0);
         }
     }
 }
@@ -371,7 +484,8 @@ UT_TEST(solve_singular_and_near_singular)
 int main(void)
 {
     UT_CASES(cases) = {
-        UT_CASE(kernels_vs_exact), UT_CASE(recip_div_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_singular_and_near_singular),
+        UT_CASE(kernels_vs_exact), UT_CASE(recip_div_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_fast_conditioned_systems),
+        UT_CASE(solve_singular_and_near_singular),
     };
     return UT_RUN("fx_mat_sweep", cases);
 }

@@ -222,7 +222,15 @@ def imp_budgets(d):
         est = IMP_WORST_ITERS * max(it_xy)
         rows.append((f"worst-case plan, extrapolated: {IMP_WORST_ITERS} x the largest x-y iteration", 600000,
                      {"n": 1, "min": est, "median": est, "max": est}, "estimate, not a measurement"))
-    rows.append(("a step with no planning work (timeline, fault monitor)", 1500, None, "not measured (no imp_step entry)"))
+    if "imp_step_idle" in k:
+        rows.append(("a step with no planning work (timeline, fault monitor): `imp_step_idle`", 1500,
+                     stats(k["imp_step_idle"]), "FIRING, 2.6 s into the first burns, no new nav sample"))
+    else:
+        rows.append(("a step with no planning work (timeline, fault monitor)", 1500, None,
+                     "not measured (no imp_step entry)"))
+    if "imp_step_nav" in k:
+        rows.append(("(a step that takes a new nav sample: `imp_step_nav`)", None, stats(k["imp_step_nav"]),
+                     "the same step with an accepted sample: prediction through 3 logged burns, gate, monitor"))
     return rows
 
 

@@ -344,6 +344,8 @@ static void bk_solve4(uint32_t i)   { W_SOLVE(fx_solve, s_solve4, i); }
 static void bn_solve4(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve4, i); }
 static void bk_solve2(uint32_t i)   { W_SOLVE(fx_solve, s_solve2, i); }
 static void bn_solve2(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve2, i); }
+static void bk_fsolve4(uint32_t i)  { W_SOLVE(fx_solve_fast, s_solve4, i); }
+static void bk_fsolve2(uint32_t i)  { W_SOLVE(fx_solve_fast, s_solve2, i); }
 static void bk_crc(uint32_t i)      { bench_sink_u = fx_crc32(0u, s_crc[i], 64u); }
 static void bn_crc(uint32_t i)      { bench_sink_u = bench_null_crc(0u, s_crc[i], 64u); }
 
@@ -536,6 +538,65 @@ static void bp_imp_trig(uint32_t i)   { fx_status_t st = 0u; imp_trig(s_imp_sig[
 /* Outside the bracket: the solve whose workspace imp_round_best needs. */
 static void bp_imp_round(uint32_t i)  { imp_solve(&s_imp_ws, &IMP_TBL_DEFAULT, &s_imp_nom[i], &s_imp_sol); }
 
+/* imp_step (spec 50 §4.7: a step with no planning work <= 1 500). Prep (outside every bracket):
+   START at step 0 on the paper's example with t0 = IMP_B_T0 (the earliest START allows) and
+   t_f = t0 + IMP_B_STEPS, then steps up to IMP_B_K - 1 with a nav sample every 10 steps (1 Hz at
+   the 0.1 s tick). The samples repeat the START counts: each passes the outlier gate (the 1 s drift
+   and burn are ~1 m / 40 mm/s, inside the gate plus allowance) and none reaches a monitor
+   window's end, so the measured step sees an accepted history, the plan done long before
+   (mode FIRING, 2.6 s into the first burns, 3 logged burn segments) and no re-plan epoch. Each
+   bracketed call restores that state first (the twin does the same copy), so all five calls
+   run the same step IMP_B_K: `imp_step_idle` without a new sample (timeline, windows, gates,
+   monitor bookkeeping), `imp_step_nav` with a new sample (prediction through the logged burns,
+   outlier gate, acceptance, monitor window). */
+#define IMP_B_T0       50u            /* START at step 0: t0 >= plan_lead */
+#define IMP_B_K        76u            /* the measured step */
+
+static imp_state_t s_imp_st0;         /* state after step IMP_B_K - 1 */
+static imp_state_t s_imp_st;
+static imp_out_t s_imp_out;
+static imp_in_t s_imp_in_idle;
+static imp_in_t s_imp_in_nav;
+
+void bench_null_imp_step(imp_state_t *s, const imp_params_t *p, const imp_in_t *in, imp_out_t *out);
+
+static void imp_b_step_fill(void)
+{
+    static const int32_t imp_ex_cnt[6] = { 5000000, -100000, 4000000, -100000, 4000000, -100000 };
+    static const imp_in_t zero = {0};
+    imp_in_t in = zero;
+    uint32_t r;
+    uint32_t k;
+
+    (void)imp_init(&s_imp_st0, &IMP_TBL_DEFAULT, &s_imp_out);
+    in.cmd = IMP_CMD_START;
+    in.cmd_t0_step = IMP_B_T0;
+    in.cmd_tf_step = IMP_B_T0 + IMP_B_STEPS;
+    in.nav_valid = 1u;
+    in.avail_mask = 0x3Fu;
+    for (r = 0u; r < IMP_NAX; r++) {
+        in.nav_pos_mm[r] = imp_ex_cnt[2u * r];
+        in.nav_vel_cnt[r] = imp_ex_cnt[(2u * r) + 1u];
+    }
+    for (k = 0u; k < IMP_B_K; k++) {
+        in.step = k;
+        in.nav_step = (k / 10u) * 10u;
+        imp_step(&s_imp_st0, &IMP_TBL_DEFAULT, &in, &s_imp_out);
+        in.cmd = IMP_CMD_NONE;
+    }
+    in.step = IMP_B_K;
+    s_imp_in_idle = in;               /* latest sample already seen */
+    in.nav_step = IMP_B_K;
+    s_imp_in_nav = in;                /* a new sample */
+}
+
+#define W_IMP_STEP(F, IN) do { s_imp_st = s_imp_st0; (F)(&s_imp_st, &IMP_TBL_DEFAULT, (IN), &s_imp_out); \
+        bench_sink_u = s_imp_out.health; } while (0)
+static void bk_imp_step0(uint32_t i)  { (void)i; W_IMP_STEP(imp_step, &s_imp_in_idle); }
+static void bn_imp_step0(uint32_t i)  { (void)i; W_IMP_STEP(bench_null_imp_step, &s_imp_in_idle); }
+static void bk_imp_step1(uint32_t i)  { (void)i; W_IMP_STEP(imp_step, &s_imp_in_nav); }
+static void bn_imp_step1(uint32_t i)  { (void)i; W_IMP_STEP(bench_null_imp_step, &s_imp_in_nav); }
+
 static void bench_empty(uint32_t i)
 {
     (void)i;
@@ -617,6 +678,8 @@ int main(void)
         { "fx_matmul_4x4", bk_matmul, bn_matmul, NULL, BENCH_SAMPLES, 0u },
         { "fx_solve_n4", bk_solve4, bn_solve4, NULL, BENCH_SAMPLES, 0u },
         { "fx_solve_n2", bk_solve2, bn_solve2, NULL, BENCH_SAMPLES, 0u },
+        { "fx_solve_fast_n4", bk_fsolve4, bn_solve4, NULL, BENCH_SAMPLES, 0u },
+        { "fx_solve_fast_n2", bk_fsolve2, bn_solve2, NULL, BENCH_SAMPLES, 0u },
         { "fx_crc32_64B", bk_crc, bn_crc, NULL, BENCH_SAMPLES, 0u },
         { "obs_step_50hz_phys", bk_obs, bn_obs, NULL, BENCH_SAMPLES, 0u },
         { "imp_trig", bk_imp_trig, bn_imp_trig, NULL, BENCH_SAMPLES, 0u },
@@ -631,6 +694,8 @@ int main(void)
         { "imp_round_best_nominal", bk_imp_round, bn_imp_round, bp_imp_round, BENCH_SAMPLES, 0u },
         { "imp_solve_search_all", bk_imp_hard, bn_imp_hard, NULL, IMP_B_NHARD, 1u },
         { "imp_solve_search_all_rtol0", bk_imp_hard0, bn_imp_hard0, NULL, IMP_B_NHARD, 1u },
+        { "imp_step_idle", bk_imp_step0, bn_imp_step0, NULL, 1u, 0u },
+        { "imp_step_nav", bk_imp_step1, bn_imp_step1, NULL, 1u, 0u },
     };
     size_t k;
     uint32_t i;
@@ -645,6 +710,7 @@ int main(void)
     board_console_write("\n");
     bench_fill();
     imp_b_fill();
+    imp_b_step_fill();
     (void)obs_init(&s_obs, &OBS_TBL_50HZ_PHYS, &s_obs_out);
     for (i = 0u; i < 10u; i++) {
         bk_obs(i);   /* initialise the filter; measure steady-state steps */

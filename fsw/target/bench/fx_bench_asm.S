@@ -116,3 +116,4 @@ bench_sled_\n:
     NULLFN bench_null_imp_trig
     NULLFN bench_null_imp_round
     NULLFN bench_null_imp_vec
+    NULLFN bench_null_imp_step
