@@ -7,12 +7,7 @@
  * and no signed expression can overflow: -x is formed only where |x| <= 2^63 - 1 is known.
  */
 #include "fx.h"
-
-/* Magnitude of an int64 as uint64 (exact, also for INT64_MIN). */
-static uint64_t mag64(int64_t v)
-{
-    return (v < 0) ? ((uint64_t)0 - (uint64_t)v) : (uint64_t)v;
-}
+#include "fx_inline.h"   /* the single implementation of the hot primitives (see there) */
 
 /* Signed value from a magnitude known to be <= 2^63 - 1 and a sign. */
 static int64_t signed_from_mag(uint64_t m, bool neg)
@@ -20,25 +15,9 @@ static int64_t signed_from_mag(uint64_t m, bool neg)
     return neg ? -(int64_t)m : (int64_t)m;
 }
 
-/* round(m / 2^n), half away from zero on a magnitude; n in [1, 63]. Never overflows. */
-static uint64_t mag_shr_rnd(uint64_t m, uint32_t n)
-{
-    return (m >> n) + ((m >> (n - 1u)) & 1u);
-}
-
 int32_t fx_sat32(int64_t v, fx_status_t *st)
 {
-    int32_t r;
-    if (v > (int64_t)INT32_MAX) {
-        *st |= FX_ST_SAT_HI;
-        r = INT32_MAX;
-    } else if (v < (int64_t)INT32_MIN) {
-        *st |= FX_ST_SAT_LO;
-        r = INT32_MIN;
-    } else {
-        r = (int32_t)v;
-    }
-    return r;
+    return fx_sat32_i(v, st);
 }
 
 int16_t fx_sat16(int32_t v, fx_status_t *st)
@@ -98,27 +77,7 @@ uint32_t fx_uabs(int32_t a)
 
 int64_t fx_add64_sat(int64_t a, int64_t b, fx_status_t *st)
 {
-    int64_t r;
-#if defined(__GNUC__) && !defined(FX_PORTABLE_C)
-    /* ADDS/ADCS + a V-flag test on Cortex-M; the wrapped sum is never used on overflow. */
-    if (__builtin_add_overflow(a, b, &r)) {
-        *st |= FX_ST_ACC_OVF;
-        r = (b > 0) ? INT64_MAX : INT64_MIN;
-    }
-#else
-    /* Portable path (other compilers; the asan-ubsan preset builds it so it stays tested).
-       Test before adding: the overflowing sum itself would be UB. */
-    if ((b > 0) && (a > (INT64_MAX - b))) {
-        *st |= FX_ST_ACC_OVF;
-        r = INT64_MAX;
-    } else if ((b < 0) && (a < (INT64_MIN - b))) {
-        *st |= FX_ST_ACC_OVF;
-        r = INT64_MIN;
-    } else {
-        r = a + b;
-    }
-#endif
-    return r;
+    return fx_add64_sat_i(a, b, st);
 }
 
 int32_t fx_shl_sat(int32_t a, uint32_t n, fx_status_t *st)
@@ -136,22 +95,12 @@ int32_t fx_shl_sat(int32_t a, uint32_t n, fx_status_t *st)
 
 int64_t fx_shr_rnd64(int64_t p, uint32_t n, fx_status_t *st)
 {
-    int64_t r;
-    if (n == 0u) {
-        r = p;
-    } else if (n > 63u) {
-        *st |= FX_ST_ARG;
-        r = 0;
-    } else {
-        /* |p| <= 2^63 so the rounded magnitude is <= 2^62 + 1: the negation cannot overflow. */
-        r = signed_from_mag(mag_shr_rnd(mag64(p), n), p < 0);
-    }
-    return r;
+    return fx_shr_rnd64_i(p, n, st);
 }
 
 int32_t fx_rshift_sat(int64_t p, uint32_t n, fx_status_t *st)
 {
-    return fx_sat32(fx_shr_rnd64(p, n, st), st);
+    return fx_rshift_sat_i(p, n, st);
 }
 
 int32_t fx_shr_rnd(int32_t a, uint32_t n, fx_status_t *st)

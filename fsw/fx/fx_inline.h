@@ -1,15 +1,15 @@
 /*
  * fx_inline.h — inlinable twins of the hottest fx_core primitives (spec 00 §1.3).
  *
- * Each function here has exactly the contract of its out-of-line namesake in fx.h (same result,
- * same status bits, for every input): fx_sat32_i = fx_sat32, fx_shr_rnd64_i = fx_shr_rnd64,
- * fx_rshift_sat_i = fx_rshift_sat, fx_add64_sat_i = fx_add64_sat. They exist because a call to
- * the generic out-of-line shift costs ~50 instructions on Cortex-M3 (variable 64-bit shift, the
- * range checks, three calls), while the inlined form with a constant shift folds to ~8. They keep
- * fx_core.c's rules: rounding on the unsigned magnitude with the sign reapplied, so no signed
- * value is ever shifted, and overflow tests before the operation (or __builtin_add_overflow
- * under GCC, FX_PORTABLE_C builds the portable path). The unit tests check bit-for-bit equality
- * with the out-of-line functions on host and target (tests/unit/test_fx_core.c).
+ * These are the implementation of fx_sat32, fx_shr_rnd64, fx_rshift_sat and fx_add64_sat: the
+ * out-of-line functions of fx.h (fx_core.c) are one-line wrappers around them, so the two forms
+ * cannot drift apart and the oracle sweeps of tests/unit/test_fx_core*.c test both. They exist
+ * because a call to the generic out-of-line shift costs ~50 instructions on Cortex-M3 (variable
+ * 64-bit shift, the range checks, three calls), while the inlined form with a constant shift folds
+ * to ~8. They keep fx_core.c's rules: rounding on the unsigned magnitude with the sign reapplied,
+ * so no signed value is ever shifted, and overflow tests before the operation (or
+ * __builtin_add_overflow under GCC; FX_PORTABLE_C, set by the asan-ubsan preset, builds and so
+ * tests the portable path).
  *
  * For hot kernels of fsw/ modules; everything else calls the fx.h functions.
  */

@@ -177,25 +177,31 @@ static uint32_t pivot_rows(fx_solve_ws_t *ws, uint32_t n, uint32_t k)
     return best;
 }
 
-/* Eliminate column k below the pivot using its reciprocal ws->rec[k]. */
+/* Eliminate column k below the pivot using its reciprocal ws->rec[k]. The multiplier
+   l = a_ik / a_kk in q30 comes straight from the reciprocal (relative error <= 2^-30, |l| <= 1 +
+   2^-30 by pivoting): the elimination's rounding dominates, so the exact fix-up of fx_recip_div
+   would buy nothing here. Each a_ij - l a_kj is formed exactly at 30 extra bits and rounded once;
+   the inline rounding (fx_inline.h) keeps the hot loop free of calls. */
 static void eliminate(fx_solve_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st)
 {
     uint32_t i;
     uint32_t j;
+    const int32_t *ak = &ws->a[(size_t)k * n];
+    int32_t rm = ws->rec[k].m;
+    uint32_t lsh = 30u - ws->rec[k].sh;
     for (i = k + 1u; i < n; i++) {
-        /* Multiplier l = a_ik / a_kk in q30 straight from the reciprocal (relative error
-           <= 2^-30, |l| <= 1 + 2^-30 by pivoting): the elimination's rounding dominates, so the
-           exact fix-up of fx_recip_div would buy nothing here. */
-        int64_t l = fx_shr_rnd64((int64_t)ws->a[(i * n) + k] * (int64_t)ws->rec[k].m, 30u - ws->rec[k].sh, st);
-        ws->a[(i * n) + k] = 0;
+        int32_t *ai = &ws->a[(size_t)i * n];
+        /* |l| <= 2^30 + 1 (|a_ik| <= |pivot|, m rounded): held in int32 so each product is one
+           32 x 32 multiply */
+        int32_t l = (int32_t)fx_shr_rnd64_i((int64_t)ai[k] * (int64_t)rm, lsh, st);
+        ai[k] = 0;
         for (j = k + 1u; j < n; j++) {
-            /* a_ij - l a_kj formed exactly at 30 extra bits, rounded once. */
-            int64_t v = ((int64_t)ws->a[(i * n) + j] * P2_30_I64) - (l * (int64_t)ws->a[(k * n) + j]);
-            ws->a[(i * n) + j] = fx_rshift_sat(v, 30u, st);
+            int64_t v = ((int64_t)ai[j] * P2_30_I64) - ((int64_t)l * (int64_t)ak[j]);
+            ai[j] = fx_rshift_sat_i(v, 30u, st);
         }
         {
-            int64_t v = ((int64_t)ws->b[i] * P2_30_I64) - (l * (int64_t)ws->b[k]);
-            ws->b[i] = fx_rshift_sat(v, 30u, st);
+            int64_t v = ((int64_t)ws->b[i] * P2_30_I64) - ((int64_t)l * (int64_t)ws->b[k]);
+            ws->b[i] = fx_rshift_sat_i(v, 30u, st);
         }
     }
 }
@@ -218,13 +224,15 @@ static void back_substitute(const fx_solve_ws_t *ws, uint32_t n, uint32_t b_shif
     }
 }
 
-void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
-              uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
+/* fx_solve's and fx_solve_fast's shared part: argument checks, the copy into ws, pivoting and
+   elimination; false (and x zeroed) on ARG or SINGULAR. Back substitution scales b from qb to
+   qa + qx, so b * 2^e must stay inside int64 (e <= 31). */
+static bool factor(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+                   uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
     uint32_t i;
     uint32_t k;
     bool fail = false;
-    /* Back substitution scales b from qb to qa + qx; keep b * 2^e inside int64 (e <= 31). */
     if ((n < 1u) || (n > FX_SOLVE_NMAX) || (qa > FX_Q_MAX) || (qb > FX_Q_MAX) || (qx > FX_Q_MAX) ||
         (qb > (qa + qx)) || ((qa + qx - qb) > 31u)) {
         *st |= FX_ST_ARG;
@@ -252,7 +260,14 @@ void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b
         for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
             x[i] = 0;
         }
-    } else {
+    }
+    return !fail;
+}
+
+void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+              uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
+{
+    if (factor(ws, a, qa, b, qb, n, x, qx, pivot_min, st)) {
         back_substitute(ws, n, (qa + qx) - qb, x, st);
     }
 }
@@ -260,36 +275,10 @@ void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b
 /* ------------------------------------------------------------------------- fast solve */
 
 /*
- * fx_solve_fast: the elimination of fx_solve (same pivots, same reciprocals, same multipliers,
- * same rounding of every update, bit for bit) with the rounding shifts inlined, and a back
- * substitution that takes each x_i straight from the reciprocal: one product, one rounding, no
- * correction step. Error analysis in fx.h and fsw/fx/README.md.
+ * fx_solve_fast: fx_solve's factor() (the same elimination), and a back substitution that takes
+ * each x_i straight from the reciprocal: one product, one rounding, no correction step. Error
+ * analysis in fx.h and fsw/fx/README.md.
  */
-
-/* Eliminate column k below the pivot: fx_solve's eliminate() with inline rounding. */
-static void eliminate_fast(fx_solve_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st)
-{
-    uint32_t i;
-    uint32_t j;
-    const int32_t *ak = &ws->a[(size_t)k * n];
-    int32_t rm = ws->rec[k].m;
-    uint32_t lsh = 30u - ws->rec[k].sh;
-    for (i = k + 1u; i < n; i++) {
-        int32_t *ai = &ws->a[(size_t)i * n];
-        /* |l| <= 2^30 + 1 (|a_ik| <= |pivot|, m rounded): held in int32 so each product is one
-           32 x 32 multiply */
-        int32_t l = (int32_t)fx_shr_rnd64_i((int64_t)ai[k] * (int64_t)rm, lsh, st);
-        ai[k] = 0;
-        for (j = k + 1u; j < n; j++) {
-            int64_t v = ((int64_t)ai[j] * P2_30_I64) - ((int64_t)l * (int64_t)ak[j]);
-            ai[j] = fx_rshift_sat_i(v, 30u, st);
-        }
-        {
-            int64_t v = ((int64_t)ws->b[i] * P2_30_I64) - ((int64_t)l * (int64_t)ws->b[k]);
-            ws->b[i] = fx_rshift_sat_i(v, 30u, st);
-        }
-    }
-}
 
 /* Number of bits of h (0 for 0), for h <= 2^33: 33 above 32 bits, else a bounded binary search
    on 32-bit words (a 64-bit variable shift costs ~15 instructions on Cortex-M3). */
@@ -359,37 +348,7 @@ static void back_substitute_fast(const fx_solve_ws_t *ws, uint32_t n, uint32_t b
 void fx_solve_fast(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                    uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
-    uint32_t i;
-    uint32_t k;
-    bool fail = false;
-    if ((n < 1u) || (n > FX_SOLVE_NMAX) || (qa > FX_Q_MAX) || (qb > FX_Q_MAX) || (qx > FX_Q_MAX) ||
-        (qb > (qa + qx)) || ((qa + qx - qb) > 31u)) {
-        *st |= FX_ST_ARG;
-        fail = true;
-    } else {
-        for (i = 0u; i < (n * n); i++) {
-            ws->a[i] = a[i];
-        }
-        for (i = 0u; i < n; i++) {
-            ws->b[i] = b[i];
-        }
-    }
-    for (k = 0u; (!fail) && (k < n); k++) {
-        uint32_t best = pivot_rows(ws, n, k);
-        if ((best == 0u) || ((int64_t)best < (int64_t)pivot_min)) {
-            *st |= FX_ST_SINGULAR;
-            ws->rec[k].d = ws->a[(k * n) + k];
-            fail = true;
-        } else {
-            fx_recip_init(&ws->rec[k], ws->a[(k * n) + k], st);
-            eliminate_fast(ws, n, k, st);
-        }
-    }
-    if (fail) {
-        for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
-            x[i] = 0;
-        }
-    } else {
+    if (factor(ws, a, qa, b, qb, n, x, qx, pivot_min, st)) {
         back_substitute_fast(ws, n, (qa + qx) - qb, x, st);
     }
 }

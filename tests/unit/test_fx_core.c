@@ -5,7 +5,6 @@
  * shifts); the host-only sweeps in test_fx_core_sweep_host.c use an exact __int128 oracle.
  */
 #include "fx.h"
-#include "fx_inline.h"
 #include "ut.h"
 #include "ut_ref.h"
 
@@ -385,61 +384,13 @@ UT_TEST(crc32_check_values)
     UT_UEQ(fx_crc32(0u, check, 0u), 0u);
 }
 
-/* fx_inline.h: every twin equals its out-of-line function bit for bit, status included. */
-UT_TEST(inline_twins_match)
-{
-    static const int64_t edge64[] = {
-        INT64_MIN, INT64_MIN + 1, -((int64_t)1 << 62) - 1, -((int64_t)1 << 62), -((int64_t)1 << 40) - 1,
-        -(int64_t)3 * ((int64_t)1 << 29), -((int64_t)1 << 29), (int64_t)INT32_MIN - 1, (int64_t)INT32_MIN,
-        -3, -2, -1, 0, 1, 2, 3, (int64_t)INT32_MAX, (int64_t)INT32_MAX + 1, ((int64_t)1 << 29),
-        (int64_t)3 * ((int64_t)1 << 29), ((int64_t)1 << 40) + 1, ((int64_t)1 << 62), INT64_MAX - 1, INT64_MAX,
-    };
-    uint64_t seed = 4242u;
-    uint32_t i;
-    uint32_t j;
-    uint32_t n;
-    for (i = 0u; i < (NELEM(edge64) + 400u); i++) {
-        int64_t v = (i < NELEM(edge64)) ? edge64[i] : (int64_t)ut_rng_next(&seed);
-        if ((i >= NELEM(edge64)) && ((i % 3u) != 0u)) {
-            uint32_t drop = 1u + (uint32_t)(ut_rng_next(&seed) % 62u);
-            v = (int64_t)((uint64_t)v >> drop) * (((i % 2u) != 0u) ? -1 : 1);   /* all magnitudes */
-        }
-        {
-            fx_status_t s1 = 0u;
-            fx_status_t s2 = 0u;
-            UT_CHECK_EQ(fx_sat32_i(v, &s1), fx_sat32(v, &s2));
-            UT_CHECK_UEQ(s1, s2);
-        }
-        for (n = 0u; n <= 65u; n++) {
-            fx_status_t s1 = 0u;
-            fx_status_t s2 = 0u;
-            UT_CHECK_EQ(fx_shr_rnd64_i(v, n, &s1), fx_shr_rnd64(v, n, &s2));
-            UT_CHECK_UEQ(s1, s2);
-            s1 = 0u;
-            s2 = 0u;
-            UT_CHECK_EQ(fx_rshift_sat_i(v, n, &s1), fx_rshift_sat(v, n, &s2));
-            UT_CHECK_UEQ(s1, s2);
-        }
-        for (j = 0u; j < NELEM(edge64); j++) {
-            fx_status_t s1 = 0u;
-            fx_status_t s2 = 0u;
-            UT_CHECK_EQ(fx_add64_sat_i(v, edge64[j], &s1), fx_add64_sat(v, edge64[j], &s2));
-            UT_CHECK_UEQ(s1, s2);
-            s1 = 0u;
-            s2 = 0u;
-            UT_CHECK_EQ(fx_add64_sat_i(edge64[j], v, &s1), fx_add64_sat(edge64[j], v, &s2));
-            UT_CHECK_UEQ(s1, s2);
-        }
-    }
-}
-
 int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(sat16_u32), UT_CASE(add_sub_neg_abs_edges), UT_CASE(add64_overflow),
         UT_CASE(shl_sat_all_shifts), UT_CASE(shr_rnd_ties_and_sweep), UT_CASE(convert_edges),
         UT_CASE(counts), UT_CASE(mul_edges_and_random), UT_CASE(div_edges_and_random),
-        UT_CASE(q_constants), UT_CASE(crc32_check_values), UT_CASE(sat_and_add), UT_CASE(inline_twins_match),
+        UT_CASE(q_constants), UT_CASE(crc32_check_values), UT_CASE(sat_and_add),
     };
     return UT_RUN("fx_core", cases);
 }
