@@ -2,7 +2,8 @@
  * imp_int.h — internal interface between the parts of the impulse scheduler module
  * (imp.c: contract, modes, plan job; imp_tl.c: timeline and valve windows; imp_nav.c:
  * navigation intake, prediction through the commanded burns, outlier gate, stuck-valve monitor,
- * thrust-level calibration). Not part of the module API.
+ * thrust-level calibration; imp_solve.c and imp_sched.c: the solve and its rounding). Not part
+ * of the module API.
  */
 #ifndef FSW_IMP_INT_H
 #define FSW_IMP_INT_H
@@ -15,6 +16,24 @@
 #define IMP_EV_STUCK_ON   0x200u
 #define IMP_EV_KIND_MASK  0xF00u
 #define IMP_EV_THR_MASK   0x0FFu
+
+/* ------------------------------------------------------------------ subsystem geometry */
+/* The decoupled subsystems of the solve and of the rounding (imp_solve.c, imp_sched.c): x-y
+   (axes 0-1, state rows 0-3) and z (axis 2, state rows 4-5). Inline: they sit in the inner loops. */
+static inline uint32_t imp_sub_nax(uint32_t sub)
+{
+    return (sub == IMP_SUB_XY) ? 2u : 1u;
+}
+
+static inline uint32_t imp_sub_ax0(uint32_t sub)
+{
+    return (sub == IMP_SUB_XY) ? 0u : 2u;
+}
+
+static inline uint32_t imp_sub_row0(uint32_t sub)
+{
+    return (sub == IMP_SUB_XY) ? 0u : 4u;
+}
 
 /* ------------------------------------------------------------------ imp_tl.c */
 /* Grid units per step (1 with whole steps) and the grid unit in us. */

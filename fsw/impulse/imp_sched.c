@@ -19,6 +19,7 @@
  * With whole steps and t_min <= period none of these rules can trigger.
  */
 #include "imp.h"
+#include "imp_int.h"
 
 #define SH_ACC_TO_X   30u   /* q58 -> q28 */
 #define NCH_CAP       16u   /* compile-time bound of the choices per subsystem */
@@ -32,22 +33,7 @@ static uint64_t u64_add_sat(uint64_t a, uint64_t b)
     return (a > (UINT64_MAX - b)) ? UINT64_MAX : (a + b);
 }
 
-static uint32_t rnd_nax(uint32_t sub)
-{
-    return (sub == IMP_SUB_XY) ? 2u : 1u;
-}
-
-static uint32_t rnd_ax0(uint32_t sub)
-{
-    return (sub == IMP_SUB_XY) ? 0u : 2u;
-}
-
-/* First state row of a subsystem; rows of an axis's Psi. */
-static uint32_t rnd_row0(uint32_t sub)
-{
-    return (sub == IMP_SUB_XY) ? 0u : 4u;
-}
-
+/* Rows of an axis's Psi. */
 static uint32_t rnd_nrow(uint32_t r)
 {
     return (r == 2u) ? 2u : 4u;
@@ -58,25 +44,10 @@ static uint32_t flag(bool b)
     return b ? 1u : 0u;
 }
 
-/* Grid units per step, and the grid unit in us (params_check: subtick divides period). */
-static uint32_t grid_per_step(const imp_params_t *p)
-{
-    uint32_t g = 1u;
-    if ((p->subtick_us != 0u) && (p->subtick_us <= p->period_us)) {
-        g = p->period_us / p->subtick_us;
-    }
-    return g;
-}
-
-static uint32_t grid_us(const imp_params_t *p)
-{
-    return (p->subtick_us != 0u) ? p->subtick_us : p->period_us;
-}
-
 /* Shortest executable burn, grid units: ceil(t_min / grid). */
 static uint32_t min_units(const imp_params_t *p)
 {
-    uint32_t u = grid_us(p);
+    uint32_t u = imp_grid_us(p);
     return (u == 0u) ? 0u : ((p->t_min_us / u) + flag((p->t_min_us % u) != 0u));
 }
 
@@ -148,16 +119,16 @@ static void contribution(const imp_params_t *p, const imp_problem_t *pr, uint32_
 /* Constant part c of the residual of subsystem sub (q58) into ws->c_q58. */
 static void base_residual(imp_ws_t *ws, const imp_problem_t *pr, uint32_t pattern, uint32_t sub, fx_status_t *st)
 {
-    uint32_t nax = rnd_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t n = 2u * nax;
-    uint32_t r0 = rnd_row0(sub);
+    uint32_t r0 = imp_sub_row0(sub);
     uint32_t i;
     uint32_t k;
     for (i = 0u; i < n; i++) {
         ws->c_q58[i] = ws->px_q58[r0 + i];
     }
     for (k = 0u; k < nax; k++) {
-        uint32_t r = rnd_ax0(sub) + k;
+        uint32_t r = imp_sub_ax0(sub) + k;
         int32_t sa1 = signed_alpha(pr, pattern, r, 0u, st);
         for (i = 0u; i < n; i++) {
             ws->c_q58[i] = fx_add64_sat(ws->c_q58[i], (int64_t)sa1 * (int64_t)ws->psif_q28[r][i], st);
@@ -169,7 +140,7 @@ static void base_residual(imp_ws_t *ws, const imp_problem_t *pr, uint32_t patter
 static int64_t term(const imp_ws_t *ws, uint32_t sub, uint32_t s, uint32_t src, uint32_t i)
 {
     int64_t v = 0;
-    uint32_t sw = (2u * rnd_ax0(sub)) + s;          /* global switch index 2r + b */
+    uint32_t sw = (2u * imp_sub_ax0(sub)) + s;          /* global switch index 2r + b */
     if ((src == SRC_C0) || (src == SRC_C1)) {
         v = ws->rc_q58[(2u * sw) + src][i];
     } else if (src == SRC_X) {
@@ -184,7 +155,7 @@ static int64_t term(const imp_ws_t *ws, uint32_t sub, uint32_t s, uint32_t src, 
 static uint64_t score(const imp_ws_t *ws, const imp_params_t *p, uint32_t sub, const uint32_t *src, int32_t *f_q28,
                       fx_status_t *st)
 {
-    uint32_t n = 2u * rnd_nax(sub);
+    uint32_t n = 2u * imp_sub_nax(sub);
     uint32_t i;
     uint32_t s;
     uint64_t cost = 0u;
@@ -214,7 +185,7 @@ static uint32_t coast_fix(imp_ws_t *ws, const imp_params_t *p, const imp_problem
     uint32_t n2 = nv[s2];
     uint32_t fixed = 0u;
     if ((n1 > 0u) && (n2 < n_total)) {
-        uint32_t g = grid_per_step(p);
+        uint32_t g = imp_grid(p);
         bool share = ((n1 - 1u) / g) == (n2 / g);
         bool same = burn_thruster(pattern, r, 0u) == burn_thruster(pattern, r, 1u);
         uint32_t coast = n2 - n1;
@@ -244,12 +215,12 @@ static uint32_t coast_fix(imp_ws_t *ws, const imp_params_t *p, const imp_problem
 static bool resolve(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, uint32_t pattern, uint32_t sub,
                     uint32_t ch, uint32_t n_total, uint32_t *nv, uint32_t *src, uint32_t *fixed, fx_status_t *st)
 {
-    uint32_t nax = rnd_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t k;
     bool ok = true;
     *fixed = 0u;
     for (k = 0u; k < (2u * nax); k++) {
-        uint32_t sw = (2u * rnd_ax0(sub)) + k;
+        uint32_t sw = (2u * imp_sub_ax0(sub)) + k;
         src[k] = (ch >> k) & 1u;
         nv[k] = ws->rn[(2u * sw) + src[k]];
     }
@@ -260,7 +231,7 @@ static bool resolve(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr
         if ((n1 > n2) || (n2 > n_total)) {
             ok = false;
         } else {
-            *fixed |= coast_fix(ws, p, pr, pattern, rnd_ax0(sub) + k, k, n_total, nv, src, st) << k;
+            *fixed |= coast_fix(ws, p, pr, pattern, imp_sub_ax0(sub) + k, k, n_total, nv, src, st) << k;
         }
     }
     return ok;
@@ -271,12 +242,12 @@ static bool resolve(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr
 static uint32_t candidates(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, const imp_solution_t *sol,
                            uint32_t sub, uint32_t n_total, fx_status_t *st)
 {
-    uint32_t nsw = 2u * rnd_nax(sub);
+    uint32_t nsw = 2u * imp_sub_nax(sub);
     uint32_t nmin = min_units(p);
     uint32_t near = 0u;
     uint32_t s;
     for (s = 0u; s < nsw; s++) {
-        uint32_t r = rnd_ax0(sub) + (s / 2u);
+        uint32_t r = imp_sub_ax0(sub) + (s / 2u);
         uint32_t b = s & 1u;
         uint32_t sw = (2u * r) + b;
         int32_t t = (b == 0u) ? sol->t1_q29[r] : sol->t2_q29[r];
@@ -297,7 +268,7 @@ static uint32_t candidates(imp_ws_t *ws, const imp_params_t *p, const imp_proble
 static void round_sub(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, const imp_solution_t *sol,
                       uint32_t sub, uint32_t n_total, imp_round_t *rd, fx_status_t *st)
 {
-    uint32_t nax = rnd_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t nsw = 2u * nax;
     uint32_t nch = 1u << nsw;
     uint32_t near = candidates(ws, p, pr, sol, sub, n_total, st);
@@ -328,10 +299,10 @@ static void round_sub(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *
     rd->nearest[sub] = (uint8_t)near;
     rd->fixed[sub] = (uint8_t)fixed;
     for (s = 0u; s < nsw; s++) {
-        rd->miss_q28[rnd_row0(sub) + s] = f[s];
+        rd->miss_q28[imp_sub_row0(sub) + s] = f[s];
     }
     for (s = 0u; s < nax; s++) {
-        uint32_t r = rnd_ax0(sub) + s;
+        uint32_t r = imp_sub_ax0(sub) + s;
         uint32_t i1 = 2u * s;
         uint32_t i2 = i1 + 1u;
         rd->n2[r] = (nv[i2] > n_total) ? n_total : nv[i2];

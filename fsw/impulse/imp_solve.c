@@ -10,6 +10,7 @@
  * attempt ends that attempt as failed (IMP_FAIL_FX), and the next pattern is tried.
  */
 #include "imp.h"
+#include "imp_int.h"
 #include "fx_inline.h"
 
 #define Q30_ONE      INT64_C(1073741824)              /* 1.0 in q30 */
@@ -185,21 +186,6 @@ void imp_phi_apply(int32_t sig_q29, const imp_trig_t *t, const int32_t *x_q28, i
 
 /* ------------------------------------------------------------------ subsystem helpers */
 
-static uint32_t sub_nax(uint32_t sub)
-{
-    return (sub == IMP_SUB_XY) ? 2u : 1u;
-}
-
-static uint32_t sub_ax0(uint32_t sub)
-{
-    return (sub == IMP_SUB_XY) ? 0u : 2u;
-}
-
-static uint32_t sub_row0(uint32_t sub)
-{
-    return (sub == IMP_SUB_XY) ? 0u : 4u;
-}
-
 /* Number of polarity patterns, bit offset in the 6-bit pattern, local pattern mask. */
 static uint32_t sub_npat(uint32_t sub)
 {
@@ -250,16 +236,16 @@ static void plan_setup(imp_ws_t *ws, const imp_problem_t *pr, fx_status_t *st)
    part of the residual c = px + sum_k s1 a1 Psi_r(tau_f). */
 static void attempt_setup(imp_ws_t *ws, const imp_problem_t *pr, uint32_t sub, uint32_t pat, fx_status_t *st)
 {
-    uint32_t nax = sub_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t n = 2u * nax;
-    uint32_t r0 = sub_row0(sub);
+    uint32_t r0 = imp_sub_row0(sub);
     uint32_t k;
     uint32_t i;
     for (i = 0u; i < n; i++) {
         ws->c_q58[i] = ws->px_q58[r0 + i];
     }
     for (k = 0u; k < nax; k++) {
-        uint32_t r = sub_ax0(sub) + k;
+        uint32_t r = imp_sub_ax0(sub) + k;
         uint32_t neg1 = (pat >> (2u * k)) & 1u;
         uint32_t neg2 = (pat >> ((2u * k) + 1u)) & 1u;
         int32_t a1 = pr->alpha_q30[(2u * r) + neg1];
@@ -296,7 +282,7 @@ static void add_switch(imp_ws_t *ws, uint32_t r, uint32_t n, int32_t sig_q29, in
 /* Residual F (q28) and Jacobian (q26) at the current iterate; returns max |F_i| in LSB. */
 static uint32_t eval(imp_ws_t *ws, const imp_problem_t *pr, uint32_t sub, fx_status_t *st)
 {
-    uint32_t nax = sub_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t n = 2u * nax;
     int64_t facc[4];
     uint32_t k;
@@ -306,7 +292,7 @@ static uint32_t eval(imp_ws_t *ws, const imp_problem_t *pr, uint32_t sub, fx_sta
         facc[i] = ws->c_q58[i];
     }
     for (k = 0u; k < nax; k++) {
-        uint32_t r = sub_ax0(sub) + k;
+        uint32_t r = imp_sub_ax0(sub) + k;
         int32_t s1 = sigma_of(pr->tauf_q29, ws->t1_q29[k], st);
         int32_t s2 = sigma_of(pr->tauf_q29, ws->t2_q29[k], st);
         add_switch(ws, r, n, s1, ws->sa1_q30[k], true, 2u * k, facc, st);
@@ -398,7 +384,7 @@ static uint32_t check_order(imp_ws_t *ws, int32_t tauf_q29, uint32_t nax)
 static uint32_t attempt_iter(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, uint32_t sub,
                              uint32_t *it, uint32_t *fres, fx_status_t *ast)
 {
-    uint32_t nax = sub_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t res = IMP_FAIL_ITER;
     if (*it > IMP_ITER_CAP) {
         *it = IMP_ITER_CAP;                 /* only with max_iter > IMP_ITER_CAP (refused table) */
@@ -488,12 +474,12 @@ static void count_iters(imp_solution_t *sol, uint32_t sub, uint32_t iters)
 static void accept(imp_ws_t *ws, imp_solution_t *sol, uint32_t sub, uint32_t pat, uint32_t how, uint32_t iters,
                    uint32_t fres, int32_t tauf_q29)
 {
-    uint32_t nax = sub_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t k;
     fx_status_t st = 0u;
     for (k = 0u; k < nax; k++) {
-        sol->t1_q29[sub_ax0(sub) + k] = ws->t1_q29[k];
-        sol->t2_q29[sub_ax0(sub) + k] = ws->t2_q29[k];
+        sol->t1_q29[imp_sub_ax0(sub) + k] = ws->t1_q29[k];
+        sol->t2_q29[imp_sub_ax0(sub) + k] = ws->t2_q29[k];
     }
     sol->sub_outcome[sub] = IMP_SOL_VALID;
     sol->how[sub] = (uint8_t)how;
@@ -509,8 +495,8 @@ static uint32_t rule_pattern(const imp_solution_t *sol, uint32_t sub)
 {
     uint32_t pat = 0u;
     uint32_t k;
-    for (k = 0u; k < sub_nax(sub); k++) {
-        uint32_t r = sub_ax0(sub) + k;
+    for (k = 0u; k < imp_sub_nax(sub); k++) {
+        uint32_t r = imp_sub_ax0(sub) + k;
         pat |= ((sol->dv1_q28[r] < 0) ? 1u : 0u) << (2u * k);
         pat |= ((sol->dv2_q28[r] < 0) ? 1u : 0u) << ((2u * k) + 1u);
     }
@@ -523,7 +509,7 @@ static uint32_t rule_pattern(const imp_solution_t *sol, uint32_t sub)
 static bool impulsive_sub(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *pr, uint32_t sub,
                           imp_solution_t *sol, fx_status_t *st)
 {
-    uint32_t nax = sub_nax(sub);
+    uint32_t nax = imp_sub_nax(sub);
     uint32_t k;
     bool ok = true;
     start_times(ws, pr->tauf_q29);
@@ -533,7 +519,7 @@ static bool impulsive_sub(imp_ws_t *ws, const imp_params_t *p, const imp_problem
         ok = false;
     }
     for (k = 0u; k < nax; k++) {
-        uint32_t r = sub_ax0(sub) + k;
+        uint32_t r = imp_sub_ax0(sub) + k;
         uint32_t jp = 2u * r;                               /* the + thruster of axis r */
         uint32_t c1 = 2u * k;
         uint32_t c2 = c1 + 1u;
@@ -621,7 +607,7 @@ static bool gate(const imp_params_t *p, imp_solution_t *sol)
 /* Thruster used by burn b of local axis k under the subsystem-local pattern pat. */
 static uint32_t pat_thruster(uint32_t sub, uint32_t pat, uint32_t k, uint32_t b)
 {
-    uint32_t r = sub_ax0(sub) + k;
+    uint32_t r = imp_sub_ax0(sub) + k;
     return (2u * r) + ((pat >> ((2u * k) + b)) & 1u);
 }
 
@@ -631,7 +617,7 @@ static bool pat_allowed(const imp_problem_t *pr, uint32_t sub, uint32_t pat)
     uint32_t k;
     uint32_t b;
     uint32_t used = 0u;
-    for (k = 0u; k < sub_nax(sub); k++) {
+    for (k = 0u; k < imp_sub_nax(sub); k++) {
         for (b = 0u; b < 2u; b++) {
             used |= 1u << pat_thruster(sub, pat, k, b);
         }
@@ -684,7 +670,7 @@ static void attempt_end(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t
     if (res == IMP_FAIL_NONE) {
         sol->st_ok |= j->ast;
         if (j->how == IMP_HOW_SEARCH) {
-            search_keep(ws, p, pr, sub_nax(sub), sol);
+            search_keep(ws, p, pr, imp_sub_nax(sub), sol);
         } else {
             accept(ws, sol, sub, j->cur, j->how, j->it, j->fres, pr->tauf_q29);
             j->stage = STG_END;
@@ -706,9 +692,9 @@ static void stage_warm(imp_ws_t *ws, const imp_problem_t *pr)
         j->tried = (uint16_t)((uint32_t)j->tried | (1u << wp));
         if (pat_allowed(pr, sub, wp)) {
             uint32_t k;
-            for (k = 0u; k < sub_nax(sub); k++) {
-                ws->t1_q29[k] = pr->warm_t1_q29[sub_ax0(sub) + k];
-                ws->t2_q29[k] = pr->warm_t2_q29[sub_ax0(sub) + k];
+            for (k = 0u; k < imp_sub_nax(sub); k++) {
+                ws->t1_q29[k] = pr->warm_t1_q29[imp_sub_ax0(sub) + k];
+                ws->t2_q29[k] = pr->warm_t2_q29[imp_sub_ax0(sub) + k];
             }
             attempt_begin(ws, pr, wp, IMP_HOW_WARM);
         }
@@ -741,7 +727,7 @@ static void stage_search(imp_ws_t *ws, const imp_problem_t *pr, imp_solution_t *
         j->stage = STG_END;
         if (ws->have_best != 0u) {
             uint32_t k;
-            for (k = 0u; k < sub_nax(sub); k++) {
+            for (k = 0u; k < imp_sub_nax(sub); k++) {
                 ws->t1_q29[k] = ws->best_t1_q29[k];
                 ws->t2_q29[k] = ws->best_t2_q29[k];
             }
@@ -916,7 +902,7 @@ uint32_t imp_attempt(imp_ws_t *ws, const imp_params_t *p, const imp_problem_t *p
         uint32_t k;
         plan_setup(ws, pr, &pst);
         *ast |= pst;
-        for (k = 0u; k < sub_nax(sub); k++) {
+        for (k = 0u; k < imp_sub_nax(sub); k++) {
             ws->t1_q29[k] = t1_q29[k];
             ws->t2_q29[k] = t2_q29[k];
         }

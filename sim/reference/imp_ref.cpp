@@ -560,6 +560,20 @@ bool small_solve(Eigen::MatrixXd a, Eigen::VectorXd b, Eigen::VectorXd &x)
 
 }  // namespace
 
+ImpGuards guards_from_table(const imp_params_t &p)
+{
+    ImpGuards g;
+    g.max_iter = p.max_iter;
+    g.r_tol = p.r_tol_lsb / kQ28;
+    g.pivot_min = p.pivot_min_q26 / 67108864.0;   // q26
+    g.pivot_ratio = std::ldexp(1.0, -static_cast<int>(p.pivot_ratio_sh));
+    g.rho_warn = p.rho_warn_q28 / kQ28;
+    g.rho_reject = p.rho_reject_q28 / kQ28;
+    g.dv_tie = p.dv_tie_q28 / kQ28;
+    g.tol_tau = 1.0 / 536870912.0;                // validity +-1 LSB of q29
+    return g;
+}
+
 ImpFsw::ImpFsw(const imp_params_t &p) : p_(p)
 {
     w_ = p.omega_nradps * 1e-9;
@@ -568,13 +582,7 @@ ImpFsw::ImpFsw(const imp_params_t &p) : p_(p)
     dg_ = w_ * us_ * 1e-6;
     wv_ = p.w_v_q28 / kQ28;
     nmin_ = (p.t_min_us + us_ - 1) / us_;
-    g_.max_iter = p.max_iter;
-    g_.r_tol = p.r_tol_lsb / kQ28;
-    g_.pivot_min = p.pivot_min_q26 / 67108864.0;
-    g_.pivot_ratio = std::ldexp(1.0, -static_cast<int>(p.pivot_ratio_sh));
-    g_.rho_warn = p.rho_warn_q28 / kQ28;
-    g_.rho_reject = p.rho_reject_q28 / kQ28;
-    g_.dv_tie = p.dv_tie_q28 / kQ28;
+    g_ = guards_from_table(p);
     init();
 }
 

@@ -50,6 +50,10 @@ struct ImpGuards {
     double tol_tau = 1.0 / 536870912.0;            // validity +-1 LSB of q29
 };
 
+// The flight table's guards in the reference's nondimensional units, so that reference and
+// fixed-point code test the same thresholds (ImpFsw, the golden generator, imp_mc).
+ImpGuards guards_from_table(const imp_params_t &p);
+
 // Nondimensional model (w = a_nom = 1). Rows of Psi / Phi e_r: 4 for axes x, y; 2 for z.
 Eigen::Matrix4d phi_xy(double tau);
 Eigen::Matrix2d phi_z(double tau);

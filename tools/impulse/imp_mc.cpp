@@ -132,21 +132,6 @@ Options parse(int argc, char **argv)
 
 int32_t q(double v, double s) { return static_cast<int32_t>(std::lround(v * s)); }
 
-// Reference guards from the flight table, so that both sides test the same thresholds.
-ref::ImpGuards guards_of(const imp_params_t &p)
-{
-    ref::ImpGuards g;
-    g.max_iter = p.max_iter;
-    g.r_tol = p.r_tol_lsb / Q28;
-    g.pivot_min = p.pivot_min_q26 / Q26;
-    g.pivot_ratio = std::ldexp(1.0, -static_cast<int>(p.pivot_ratio_sh));
-    g.rho_warn = p.rho_warn_q28 / Q28;
-    g.rho_reject = p.rho_reject_q28 / Q28;
-    g.dv_tie = p.dv_tie_q28 / Q28;
-    g.tol_tau = 1.0 / Q29;
-    return g;
-}
-
 struct Problem {
     imp_problem_t pr;
     ref::ImpCase c;   // the dequantised case the fixed-point code sees
@@ -285,7 +270,7 @@ int main(int argc, char **argv)
     }
     const double w = o.omega > 0.0 ? o.omega : p.omega_nradps * 1e-9;
     const double tauf = o.tauf > 0.0 ? o.tauf : w * 1055.0;
-    const ref::ImpGuards g = guards_of(p);
+    const ref::ImpGuards g = ref::guards_from_table(p);
 
     FILE *fo = stdout;
     if (!o.out.empty()) {

@@ -511,20 +511,6 @@ void emit_obs_record(Emit &e, const gv_obs_t &v)
 
 // ------------------------------------------------------------------ impulse
 
-ref::ImpGuards guards_of(const imp_params_t &p)   // as tools/impulse/imp_mc.cpp
-{
-    ref::ImpGuards g;
-    g.max_iter = p.max_iter;
-    g.r_tol = p.r_tol_lsb / Q28;
-    g.pivot_min = p.pivot_min_q26 / Q26;
-    g.pivot_ratio = std::ldexp(1.0, -static_cast<int>(p.pivot_ratio_sh));
-    g.rho_warn = p.rho_warn_q28 / Q28;
-    g.rho_reject = p.rho_reject_q28 / Q28;
-    g.dv_tie = p.dv_tie_q28 / Q28;
-    g.tol_tau = 1.0 / Q29;
-    return g;
-}
-
 struct Problem {
     gv_imp_case_t v{};
     ref::ImpCase c;   // the dequantised case the fixed-point code sees
@@ -554,7 +540,7 @@ Problem make_problem(const imp_params_t &p, const ref::Vec6 &x0, double tauf)
 // The reference plan of a problem, into the record.
 void solve_ref(const imp_params_t &p, Problem &f, uint32_t &n_valid)
 {
-    const ref::ImpGuards g = guards_of(p);
+    const ref::ImpGuards g = ref::guards_from_table(p);
     const ref::ImpPlan pl = ref::solve(f.c, g);
     gv_imp_case_t &v = f.v;
     v.outcome = pl.outcome;
@@ -685,7 +671,7 @@ void gen_obs(const std::string &scn_dir, const std::string &out_dir)
 void gen_imp(const std::string &out_dir)
 {
     const imp_params_t &p = IMP_TBL_DEFAULT;
-    const ref::ImpGuards g = guards_of(p);
+    const ref::ImpGuards g = ref::guards_from_table(p);
     const double w = p.omega_nradps * 1e-9;
     uint32_t n_valid = 0;
     // G3: the paper's example (spec 50 §3.4): X0 = (5 km, -1 m/s, 4 km, -1 m/s, 4 km, -1 m/s), T = 1055 s.
