@@ -32,14 +32,14 @@ import argparse
 import datetime
 import json
 import os
-import platform
-import re
 import statistics
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+from tools.bench import provenance  # noqa: E402  (after the path it needs)
 QEMU_RUN = os.path.join(ROOT, "tools", "qemu-run.sh")
 ELF_REL = os.path.join("fsw", "target", "fx_bench.elf")
 CALLS_PER_BRACKET = 5
@@ -209,7 +209,7 @@ def imp_budgets(d):
         rows.append(("nominal plan: solve (rule valid) + rounding, min/median/max added", 30000,
                      {"n": len(rule), "min": min(rule) + min(rnd),
                       "median": statistics.median(rule) + statistics.median(rnd), "max": max(rule) + max(rnd)},
-                     "calibration update not implemented yet"))
+                     "the calibration update runs in a nav step (imp_step_nav row), not in the plan"))
     for name, what in (("imp_solve_search_all", "hard wide-box states, every pattern tried"),
                        ("imp_solve_search_all_rtol0", "the same with r_tol = 0 (attempts run to max_iter)")):
         if name in k:
@@ -241,27 +241,6 @@ def tool_version(cmd):
         return "unknown"
 
 
-def machine_description():
-    cpu = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            m = re.search(r"model name\s*:\s*(.+)", f.read())
-            if m:
-                cpu = m.group(1).strip()
-    except OSError:
-        pass
-    return {"host": platform.node(), "os": f"{platform.system()} {platform.release()}", "cpu": cpu,
-            "cores": os.cpu_count(), "python": platform.python_version()}
-
-
-def commit():
-    r = sh(["git", "-C", ROOT, "rev-parse", "--short=12", "HEAD"])
-    if r.returncode != 0:
-        return "none (no commit yet)"
-    dirty = sh(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"]).stdout.strip()
-    return r.stdout.strip() + ("-dirty" if dirty else "")
-
-
 def fmt_med(x):
     return str(int(x)) if float(x).is_integer() else f"{x:.1f}"
 
@@ -276,7 +255,7 @@ def main():
     a = ap.parse_args()
 
     report = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-              "commit": commit(), "machine": machine_description(),
+              "commit": provenance.commit(), "machine": provenance.machine_description(),
               "qemu": tool_version([os.environ.get("QEMU", "qemu-system-arm"), "--version"]),
               "method": "qemu -icount shift=3; SysTick 25 MHz (1 tick = 5 insns); bracket of 5 identical "
                         "calls + 4 NOPs makes counts exact; kernel = entry..return inclusive; "

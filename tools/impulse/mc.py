@@ -29,7 +29,6 @@ import hashlib
 import json
 import math
 import os
-import platform
 import re
 import shutil
 import statistics
@@ -38,6 +37,8 @@ import sys
 import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+from tools.bench import provenance  # noqa: E402  (after the path it needs)
 DEFAULT_EXE = os.path.join(ROOT, "build", "host", "tools", "impulse", "imp_mc")
 BOXES = ("nominal", "wide")
 MIN_N = {"nominal": 500, "wide": 200}   # spec 50 §7 A4-3
@@ -104,29 +105,6 @@ def build_type_of(exe):
             return "(none)"
         d = os.path.dirname(d)
     return "unknown"
-
-
-def machine_description():
-    cpu = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            m = re.search(r"model name\s*:\s*(.+)", f.read())
-            if m:
-                cpu = m.group(1).strip()
-    except OSError:
-        pass
-    return {"host": platform.node(), "os": f"{platform.system()} {platform.release()}", "cpu": cpu,
-            "cores": os.cpu_count(), "python": platform.python_version()}
-
-
-def commit():
-    r = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short=12", "HEAD"], stdout=subprocess.PIPE,
-                       stderr=subprocess.DEVNULL, text=True, check=False)
-    if r.returncode != 0:
-        return "none (no commit yet)"
-    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
-                           stdout=subprocess.PIPE, text=True, check=False).stdout.strip()
-    return r.stdout.strip() + ("-dirty" if dirty else "")
 
 
 def run_chunks(a, exe, header, plan):
@@ -492,7 +470,7 @@ def main(a):
     by_box = {b: [x for x in rows if x["box"] == b] for b in boxes}
 
     summ = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            "commit": commit(), "machine": machine_description(), "exe": exe, "exe_build_type": build_type_of(exe),
+            "commit": provenance.commit(), "machine": provenance.machine_description(), "exe": exe, "exe_build_type": build_type_of(exe),
             "campaign": dict(camp, boxes=dict(zip(boxes, ns)), jobs=a.jobs),
             "sampling": "sim::Rng(seed, (box_id << 32) | index), 6 uniform draws, X0 = (2u - 1) half-width; "
                         "nominal +-5 km / +-1 m/s (box_id 1), wide +-20 km / +-5 m/s (box_id 2)",
