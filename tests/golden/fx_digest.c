@@ -8,21 +8,17 @@
  */
 #include "fx.h"
 #include "ut.h"
+#include "gv_print.h"
 
+/* gv_digest.h's word-wise CRC, plus the set index for FX_DIGEST_DUMP. */
 typedef struct {
-    uint32_t crc;
-    uint32_t n;
+    gv_dg_t g;
     uint32_t set;
 } dg_t;
 
 static void dg_u32(dg_t *d, uint32_t v)
 {
-    uint8_t b[4];
-    b[0] = (uint8_t)(v & 0xFFu);
-    b[1] = (uint8_t)((v >> 8) & 0xFFu);
-    b[2] = (uint8_t)((v >> 16) & 0xFFu);
-    b[3] = (uint8_t)((v >> 24) & 0xFFu);
-    d->crc = fx_crc32(d->crc, b, 4u);
+    gv_dg_u32(&d->g, v);
 #if defined(FX_DIGEST_DUMP)
     if (d->set == (uint32_t)(FX_DIGEST_DUMP)) {
         ut_put_u32hex(v);
@@ -39,25 +35,18 @@ static void dg_rec(dg_t *d, int32_t v, fx_status_t st)
 {
     dg_i32(d, v);
     dg_u32(d, st);
-    d->n++;
+    d->g.n++;
 }
 
 static void dg_begin(dg_t *d, uint32_t set)
 {
-    d->crc = 0u;
-    d->n = 0u;
+    gv_dg_begin(&d->g);
     d->set = set;
 }
 
 static void dg_end(const dg_t *d, const char *name)
 {
-    ut_puts("digest ");
-    ut_puts(name);
-    ut_puts(" ");
-    ut_put_u64(d->n);
-    ut_puts(" ");
-    ut_put_u32hex(d->crc);
-    ut_puts("\n");
+    gv_dg_print(name, "", &d->g);
 }
 
 static const int32_t edges[] = {

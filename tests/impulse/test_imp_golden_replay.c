@@ -40,7 +40,7 @@
 #include "imp_tables.h"
 #include "ut.h"
 #include "gv.h"
-#include "gv_digest.h"
+#include "gv_print.h"
 #include "gv_imp_vectors.h"
 
 #if defined(GV_MISSING)
@@ -232,17 +232,6 @@ static uint32_t solve_case(const char *set, uint32_t idx, const gv_imp_case_t *c
     return bad;
 }
 
-static void print_digest(const char *name, const gv_dg_t *d)
-{
-    ut_puts("digest ");
-    ut_puts(name);
-    ut_puts(" ");
-    ut_put_u64(d->n);
-    ut_puts(" ");
-    ut_put_u32hex(d->crc);
-    ut_puts("\n");
-}
-
 static void print_stats(const char *set, const g4_stats_t *st)
 {
     ut_puts(set);
@@ -277,7 +266,7 @@ static void check_inputs(const char *name, const void *recs, uint32_t n, uint32_
         d.n++;
     }
     UT_CHECK_UEQ(d.crc, crc);
-    print_digest(name, &d);
+    gv_dg_print(name, "", &d);
 }
 
 UT_TEST(golden_replay_g3_example)
@@ -346,10 +335,10 @@ UT_TEST(golden_replay_g3_example)
             }
         }
     }
-    print_digest("imp_g3_iterates", &d);
+    gv_dg_print("imp_g3_iterates", "", &d);
     gv_dg_begin(&d);
     bad += solve_case("G3 plan", 0u, &GV_IMP_G3_CASE, &d, &st);
-    print_digest("imp_g3_plan", &d);
+    gv_dg_print("imp_g3_plan", "", &d);
     ut_puts("G3 example: ");
     ut_put_u64(GV_IMP_G3_N);
     ut_puts(" iterates, max |dT| ");
@@ -379,7 +368,7 @@ UT_TEST(golden_replay_g4_monte_carlo)
     for (k = 0u; k < GV_IMP_G4_N; k++) {
         st.bad += solve_case("G4", k, &GV_IMP_G4[k], &d, &st);
     }
-    print_digest("imp_g4_plans", &d);
+    gv_dg_print("imp_g4_plans", "", &d);
     print_stats("G4 subset", &st);
     UT_CHECK_EQ(st.bad, 0);
     UT_CHECK_EQ(st.n, GV_IMP_G4_N);

@@ -66,7 +66,7 @@
 #include "obs_tables.h"
 #include "ut.h"
 #include "gv.h"
-#include "gv_digest.h"
+#include "gv_print.h"
 #include "gv_obs_vectors.h"
 
 #if defined(GV_MISSING)
@@ -431,19 +431,8 @@ static void replay(const char *set, const char *dg_name, const obs_params_t *bas
     }
     print_stats(set, "", &st);
     print_stats(set, ", from step 200 on", &late);
-    ut_puts("digest ");
-    ut_puts(dg_name);
-    ut_puts("_vectors ");
-    ut_put_u64(din.n);
-    ut_puts(" ");
-    ut_put_u32hex(din.crc);
-    ut_puts("\ndigest ");
-    ut_puts(dg_name);
-    ut_puts(" ");
-    ut_put_u64(dout.n);
-    ut_puts(" ");
-    ut_put_u32hex(dout.crc);
-    ut_puts("\n");
+    gv_dg_print(dg_name, "_vectors", &din);
+    gv_dg_print(dg_name, "", &dout);
     UT_CHECK_EQ(st.bad, 0);
     UT_CHECK_EQ(twin_bad, 0);
     UT_CHECK_EQ(st.n, n);
