@@ -251,6 +251,40 @@ UT_TEST(persistent_stale_and_sat_go_to_safe_with_zero_command)
     UT_TRUE((g_oa.health & FSW_H_SAT_PERSIST) != 0u);
 }
 
+/* fx status bits are never silent, and they are not a SAFE trigger (fsw/app/README.md
+   "Executive": spec 10 S0-9 at 1.0 deg/s needs the loop to keep commanding while the estimate,
+   out of its design range, saturates from 11.9 s until the plant diverges at 26.8 s). A gyro
+   stuck at 1 deg/s on the 5 Hz table (found by fuzz_fsw_step) saturates the regressor column of
+   F from the second step on: every such step carries the fx bits and FSW_H_MODULE, the
+   commands stay inside the table's limit, and the executive stays in DETUMBLE. */
+UT_TEST(fx_status_is_reported_and_commands_stay_limited)
+{
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in;
+    int64_t k;
+    uint32_t n_fx = 0u;
+    int32_t lim = (OBS_TBL_5HZ_PAPER.bdot_max_q29 >> OBS_TBL_5HZ_PAPER.act_cnt_shift) + 1;
+    c.period_us = 200000u;
+    c.stale_max = 5u;
+    UT_UEQ(fsw_init(&g_a, &c, &OBS_TBL_5HZ_PAPER, 1u), FSW_OK);
+    for (k = 1; k <= 100; k++) {
+        in = frame(k, CNT_1DEG_S, CNT_1DEG_S);
+        fsw_step(&g_a, &in, &g_oa);
+        UT_CHECK_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+        UT_CHECK((g_oa.act_cnt[0] <= lim) && (g_oa.act_cnt[0] >= -lim));
+        UT_CHECK((g_oa.act_cnt[1] <= lim) && (g_oa.act_cnt[1] >= -lim));
+        if ((g_oa.health & 0xFFu) != 0u) {
+            UT_CHECK((g_oa.health & FSW_H_MODULE) != 0u);
+            UT_CHECK((g_oa.tlm.health_sticky & 0xFFu) != 0u);
+            n_fx++;
+        } else {
+            UT_CHECK(k == 1);   /* the initialising step only */
+        }
+    }
+    UT_UEQ(n_fx, 99u);
+    UT_UEQ(g_oa.tlm.n_safe, 0u);
+}
+
 /* Runs a and b on the same inputs; b gets `img` uploaded between steps 20 and 21. */
 static void run_pair_with_upload(const uint8_t *img, uint32_t n, uint32_t rev, fsw_rc_t *rc,
                                  uint32_t *why)
@@ -943,7 +977,7 @@ int main(void)
         UT_CASE(bad_config_and_bad_boot_table_are_refused),
         UT_CASE(mode_commands_follow_the_transition_rules),
         UT_CASE(invalid_channels_hold_the_last_good_value_and_are_counted),
-        UT_CASE(persistent_stale_and_sat_go_to_safe_with_zero_command),
+        UT_CASE(persistent_stale_and_sat_go_to_safe_with_zero_command), UT_CASE(fx_status_is_reported_and_commands_stay_limited),
         UT_CASE(table_upload_accepted_at_the_step_boundary),
         UT_CASE(corrupt_or_vetoed_tables_are_refused_and_nothing_is_lost),
         UT_CASE(scrub_failure_goes_to_safe),
