@@ -49,54 +49,21 @@
 #include "fsw_exec.h"
 #include "obs_tables.h"
 #include "imp_tables.h"
-
-#if defined(__GNUC__) || defined(__clang__)
-#define FZ_TRAP() __builtin_trap()
-#else
-#define FZ_TRAP() abort()
-#endif
-#define FZ_CHECK(cond) \
-    do { \
-        if (!(cond)) { \
-            FZ_TRAP(); \
-        } \
-    } while (0)
+#include "fuzz_input.h"
 
 #define FZ_MAX_STEPS 1000u   /* keeps libFuzzer under ASan at several execs/s */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-typedef struct {
-    const uint8_t *d;
-    size_t n;
-    size_t i;
-} fz_rd_t;
-
-static uint32_t rd_u8(fz_rd_t *r)
+static int32_t rd_i16(fz_in_t *r)
 {
-    uint32_t v = 0u;
-    if (r->i < r->n) {
-        v = r->d[r->i];
-        r->i++;
-    }
-    return v;
+    return (int32_t)fz_u16(r) - 32768;
 }
 
-static uint32_t rd_u16(fz_rd_t *r)
+static int32_t rd_i32(fz_in_t *r)
 {
-    uint32_t lo = rd_u8(r);
-    return lo | (rd_u8(r) << 8);
-}
-
-static int32_t rd_i16(fz_rd_t *r)
-{
-    return (int32_t)rd_u16(r) - 32768;
-}
-
-static int32_t rd_i32(fz_rd_t *r)
-{
-    uint32_t v = rd_u16(r);
-    v |= rd_u16(r) << 16;
+    uint32_t v = fz_u16(r);
+    v |= fz_u16(r) << 16;
     /* two's complement without the implementation-defined unsigned -> signed conversion */
     return (v <= (uint32_t)INT32_MAX) ? (int32_t)v : (-(int32_t)(~v) - 1);
 }
@@ -238,8 +205,8 @@ static fsw_t s_f[2];   /* 25 KB each: static, so the fuzzer's stack stays small 
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    fz_rd_t r = { data, size, 0u };
-    uint32_t c0 = rd_u8(&r);
+    fz_in_t r = { data, size, 0u };
+    uint32_t c0 = fz_u8(&r);
     bool rdv = (c0 & 1u) != 0u;
     uint32_t tsel = (c0 >> 1) & 3u;
     fsw_cfg_t cfg;
@@ -258,7 +225,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&cfg, 0, sizeof cfg);
     memset(&in, 0, sizeof in);
     memset(prev_c, 0, sizeof prev_c);
-    cfg.stale_max = (uint16_t)(1u + rd_u8(&r));
+    cfg.stale_max = (uint16_t)(1u + fz_u8(&r));
     cfg.mission = rdv ? FSW_MISSION_RENDEZVOUS : FSW_MISSION_DETUMBLE;
     cfg.boot_mode = ((c0 & 8u) != 0u) ? FSW_MODE_STANDBY : (rdv ? FSW_MODE_RENDEZVOUS : FSW_MODE_DETUMBLE);
     lim.rdv = rdv;
@@ -284,9 +251,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in.mode_cmd = FSW_CMD_NONE;
     in.tc = FSW_TC_NONE;
 
-    while ((r.i < r.n) && (steps < FZ_MAX_STEPS)) {
-        uint32_t op = rd_u8(&r);
-        uint32_t reps = 1u + rd_u8(&r);
+    while ((r.pos < r.n) && (steps < FZ_MAX_STEPS)) {
+        uint32_t op = fz_u8(&r);
+        uint32_t reps = 1u + fz_u8(&r);
         uint32_t mode_cmd = FSW_CMD_NONE;
         uint32_t tc = FSW_TC_NONE;
         int32_t tc_arg[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
@@ -299,10 +266,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             seq_step = 0;
             break;
         case 2u:
-            seq_step = -(int64_t)(1u + rd_u8(&r));
+            seq_step = -(int64_t)(1u + fz_u8(&r));
             break;
         case 3u:
-            seq_step = (int64_t)(2u + rd_u16(&r));
+            seq_step = (int64_t)(2u + fz_u16(&r));
             break;
         default:
             break;
@@ -319,18 +286,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         if ((op & 16u) != 0u) {
             for (i = 0u; i < nsens; i++) {
-                status[i] = (uint8_t)rd_u8(&r);
+                status[i] = (uint8_t)fz_u8(&r);
             }
         }
         if ((op & 32u) != 0u) {
-            mode_cmd = rd_u8(&r) % (FSW_MODE_COUNT + 2u);
+            mode_cmd = fz_u8(&r) % (FSW_MODE_COUNT + 2u);
         }
         if ((op & 64u) != 0u) {
-            uint32_t kind = rd_u8(&r) % 6u;   /* 2 START, 3 ABORT, 4 CLEAR; 0, 1, 5 unknown */
+            uint32_t kind = fz_u8(&r) % 6u;   /* 2 START, 3 ABORT, 4 CLEAR; 0, 1, 5 unknown */
             tc = kind;
             if (kind == FSW_TC_IMP_START) {
-                uint32_t lead = rd_u8(&r);
-                uint32_t dur = rd_u8(&r);
+                uint32_t lead = fz_u8(&r);
+                uint32_t dur = fz_u8(&r);
                 int64_t t0 = seq + 1 + (int64_t)lead;
                 tc_arg[0] = (int32_t)(t0 & 0x7FFFFFFF);
                 tc_arg[1] = (int32_t)((t0 + 100 + (16 * (int64_t)dur)) & 0x7FFFFFFF);
@@ -340,7 +307,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
         }
         if ((op & 128u) != 0u) {
-            in.n_counts = rd_u8(&r) % (FSW_IN_MAX + 2u);
+            in.n_counts = fz_u8(&r) % (FSW_IN_MAX + 2u);
         }
         for (k = 0u; (k < reps) && (steps < FZ_MAX_STEPS); k++) {
             fsw_out_t out[2];

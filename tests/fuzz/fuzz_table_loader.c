@@ -38,46 +38,13 @@
 
 #include "app/fsw_table.h"
 #include "tbl_test_desc.h"
-
-#if defined(__GNUC__) || defined(__clang__)
-#define FZ_TRAP() __builtin_trap()
-#else
-#define FZ_TRAP() abort()
-#endif
-#define FZ_CHECK(cond) \
-    do { \
-        if (!(cond)) { \
-            FZ_TRAP(); \
-        } \
-    } while (0)
+#include "fuzz_input.h"
 
 #define FZ_STAGE_MAX 4200u
 #define FZ_MAX_OPS   512u
 #define FZ_MAX_SENDS 1024u  /* chunks per input (keeps an input's cost bounded: exec/s) */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-typedef struct {
-    const uint8_t *d;
-    size_t n;
-    size_t pos;
-} fz_in_t;
-
-static uint32_t fz_u8(fz_in_t *in)
-{
-    uint32_t v = 0u;
-    if (in->pos < in->n) {
-        v = in->d[in->pos];
-        in->pos++;
-    }
-    return v;
-}
-
-static uint32_t fz_u16(fz_in_t *in)
-{
-    uint32_t lo = fz_u8(in);
-    return lo | (fz_u8(in) << 8);
-}
 
 static uint32_t fz_rd_le(const uint8_t *p, uint32_t w)
 {
