@@ -232,13 +232,8 @@ uint32_t fsw_imp_table_encode(const imp_params_t *p, uint32_t revision, uint8_t 
         fsw_wr_i32(&w, p->nav_gate_acc_q28);
         fsw_wr_i32(&w, p->replan_gain_q30);
         if ((!w.err) && (w.pos == FSW_TBL_IMP_PAYLOAD)) {
-            fsw_wr_t h;
-            fsw_wr_init(&h, img, FSW_TABLE_HDR_BYTES);
-            fsw_wr_u16(&h, (uint16_t)FSW_TBL_ID_IMP);
-            fsw_wr_u16(&h, (uint16_t)FSW_TBL_IMP_LAYOUT);
-            fsw_wr_u32(&h, FSW_TBL_IMP_PAYLOAD);
-            fsw_wr_u32(&h, revision);
-            fsw_wr_u32(&h, fx_crc32(0u, pl, FSW_TBL_IMP_PAYLOAD));
+            fsw_table_write_header(img, (uint16_t)FSW_TBL_ID_IMP, (uint16_t)FSW_TBL_IMP_LAYOUT, FSW_TBL_IMP_PAYLOAD,
+                                   revision);
             n = FSW_TABLE_HDR_BYTES + FSW_TBL_IMP_PAYLOAD;
         }
     }

@@ -184,13 +184,8 @@ uint32_t fsw_obs_table_encode(const obs_params_t *p, uint32_t revision, uint8_t 
         wr_vec(&w, p->d, OBS_NU * OBS_NX);
         wr_vec(&w, p->w, OBS_NZ * OBS_NY);
         if ((!w.err) && (w.pos == FSW_TBL_OBS_PAYLOAD)) {
-            fsw_wr_t h;
-            fsw_wr_init(&h, img, FSW_TABLE_HDR_BYTES);
-            fsw_wr_u16(&h, (uint16_t)FSW_TBL_ID_OBS);
-            fsw_wr_u16(&h, (uint16_t)FSW_TBL_OBS_LAYOUT);
-            fsw_wr_u32(&h, FSW_TBL_OBS_PAYLOAD);
-            fsw_wr_u32(&h, revision);
-            fsw_wr_u32(&h, fx_crc32(0u, pl, FSW_TBL_OBS_PAYLOAD));
+            fsw_table_write_header(img, (uint16_t)FSW_TBL_ID_OBS, (uint16_t)FSW_TBL_OBS_LAYOUT, FSW_TBL_OBS_PAYLOAD,
+                                   revision);
             n = FSW_TABLE_HDR_BYTES + FSW_TBL_OBS_PAYLOAD;
         }
     }

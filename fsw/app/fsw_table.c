@@ -565,3 +565,15 @@ uint32_t fsw_table_revision(const fsw_table_t *t)
     }
     return rev;
 }
+
+void fsw_table_write_header(uint8_t *img, uint16_t table_id, uint16_t layout, uint32_t payload_len,
+                            uint32_t revision)
+{
+    fsw_wr_t h;
+    fsw_wr_init(&h, img, FSW_TABLE_HDR_BYTES);
+    fsw_wr_u16(&h, table_id);
+    fsw_wr_u16(&h, layout);
+    fsw_wr_u32(&h, payload_len);
+    fsw_wr_u32(&h, revision);
+    fsw_wr_u32(&h, fx_crc32(0u, &img[FSW_TABLE_HDR_BYTES], payload_len));
+}
