@@ -28,7 +28,6 @@
 
 #include <stdint.h>
 #include <stdbool.h>
-#include "fsw_types.h"
 #include "fsw_table.h"
 #include "obs.h"
 #include "imp.h"

@@ -20,7 +20,7 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include <stddef.h>
-#include "fsw_types.h"
+#include "fx.h"
 
 #define FSW_TABLE_HDR_BYTES   16u    /* header size on the wire */
 #define FSW_TABLE_CAP_BYTES   4096u  /* largest image, header included */

@@ -16,6 +16,7 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include "fx_rc.h"
 
 typedef uint32_t fx_status_t;
 

@@ -30,7 +30,6 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include "fx.h"
-#include "fsw_types.h"
 
 #define IMP_NX      6u     /* state dimension */
 #define IMP_NAX     3u     /* axes */

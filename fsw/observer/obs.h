@@ -16,7 +16,6 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include "fx.h"
-#include "fsw_types.h"
 
 #define OBS_NX   6u           /* plant state */
 #define OBS_NZ   7u           /* EKF state: x and kappa */

@@ -1,13 +1,15 @@
 /*
- * fsw_types.h — result codes shared by fsw/app and the algorithm modules (spec 00 §3.1).
+ * fx_rc.h — result codes of every flight entry point (spec 00 §3.1): the executive, the table
+ * loader and the algorithm modules. They live in fsw/fx, the bottom layer, so a module header
+ * needs nothing from fsw/app (fx.h includes this file).
  *
  * fsw_rc_t is a plain uint32_t rather than an enum: MISRA C:2012 gives enums their own
  * essential type, so every comparison or store into a telemetry word would need a cast. The
  * codes name the class of failure; the detailed reason of a table rejection (which check,
  * which field) is the separate reason word of fsw_table.h.
  */
-#ifndef FSW_APP_TYPES_H
-#define FSW_APP_TYPES_H
+#ifndef FSW_FX_RC_H
+#define FSW_FX_RC_H
 
 #include <stdint.h>
 
@@ -24,4 +26,4 @@ typedef uint32_t fsw_rc_t;
 #define FSW_ERR_RANGE      8u  /* a parameter lies outside its [min, max] */
 #define FSW_ERR_INVARIANT  9u  /* a cross-field invariant does not hold */
 
-#endif /* FSW_APP_TYPES_H */
+#endif /* FSW_FX_RC_H */
