@@ -539,6 +539,20 @@ fsw_rc_t fsw_table_veto(fsw_table_t *t, uint32_t detail, uint32_t *why)
     return rc;
 }
 
+uint32_t fsw_table_veto_detail(uint32_t why)
+{
+    uint32_t d = FSW_VETO_UNDECODED;
+    uint32_t bit = 1u;
+    uint32_t i;
+    for (i = 0u; (i < 31u) && (d == FSW_VETO_UNDECODED); i++) {
+        if ((why & bit) != 0u) {
+            d = i + 1u;
+        }
+        bit <<= 1u;
+    }
+    return d;
+}
+
 const uint8_t *fsw_table_payload(const fsw_table_t *t, uint32_t *len)
 {
     const uint8_t *p = NULL;

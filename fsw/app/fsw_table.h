@@ -21,6 +21,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include "fx.h"
+#include "fsw_ids.h"
 
 #define FSW_TABLE_HDR_BYTES   16u    /* header size on the wire */
 #define FSW_TABLE_CAP_BYTES   4096u  /* largest image, header included */
@@ -34,29 +35,8 @@
 #define FSW_FT_U32  3u
 #define FSW_FT_I32  4u
 
-/* Reason codes (bits 0..7 of the reason word). 0 = no rejection since init. */
-#define FSW_TBL_R_NONE          0u
-#define FSW_TBL_R_CHUNK_LEN     1u   /* chunk n == 0 or n > FSW_TABLE_CHUNK_MAX, null data */
-#define FSW_TBL_R_BUSY          2u   /* chunk while a validated candidate awaits commit */
-#define FSW_TBL_R_OVERSIZE      3u   /* total_len < header or > FSW_TABLE_CAP_BYTES */
-#define FSW_TBL_R_UPLOAD_ID     4u   /* chunk table_id is not this table's */
-#define FSW_TBL_R_TOTAL_CHANGED 5u   /* total_len differs from the upload's first chunk */
-#define FSW_TBL_R_REV_CHANGED   6u   /* revision differs from the upload's first chunk */
-#define FSW_TBL_R_OFFSET        7u   /* offset + n beyond total_len (or capacity) */
-#define FSW_TBL_R_OVERLAP       8u   /* bytes already received differ from the new chunk */
-#define FSW_TBL_R_MISSING       9u   /* end of upload with bytes missing */
-#define FSW_TBL_R_DECODE        10u  /* header length field != image bytes - header */
-#define FSW_TBL_R_CRC           11u  /* payload CRC-32 mismatch */
-#define FSW_TBL_R_ID            12u  /* header table_id != descriptor */
-#define FSW_TBL_R_VERSION       13u  /* header layout_version != descriptor */
-#define FSW_TBL_R_LENGTH        14u  /* payload length != descriptor */
-#define FSW_TBL_R_RANGE_LO      15u  /* field (detail = index) below its min */
-#define FSW_TBL_R_RANGE_HI      16u  /* field (detail = index) above its max */
-#define FSW_TBL_R_INVARIANT     17u  /* relation (detail = index) violated */
-#define FSW_TBL_R_NO_UPLOAD     18u  /* end of upload when none is in progress */
-#define FSW_TBL_R_SCRUB         19u  /* active image CRC mismatch found by the scrub */
-#define FSW_TBL_R_MODULE        20u  /* module params_check vetoed the candidate (detail:
-                                        low 8 bits of the module's why) */
+/* Reason codes (bits 0..7 of the reason word; 0 = no rejection since init): FSW_TBL_R_* in
+   fsw_ids.h, generated from fsw_iface.py. */
 #define FSW_TBL_DETAIL_SHIFT    8u   /* reason word = code | (detail << FSW_TBL_DETAIL_SHIFT) */
 
 /* Loader states (fsw_table_t.state). */
@@ -152,6 +132,11 @@ fsw_rc_t fsw_table_scrub(fsw_table_t *t);
  */
 const uint8_t *fsw_table_candidate(const fsw_table_t *t, uint32_t *len);
 fsw_rc_t fsw_table_veto(fsw_table_t *t, uint32_t detail, uint32_t *why);
+/* The veto detail of a module check's why word, one rule for every module: 1 + the index of its
+   lowest set bit (bits 0..30), FSW_VETO_UNDECODED for an empty word or a candidate that did not
+   decode. */
+#define FSW_VETO_UNDECODED 0xFFu
+uint32_t fsw_table_veto_detail(uint32_t why);
 /* Active payload (NULL when none) and its length in *len (may be NULL); decode it with
    fsw_codec at the descriptor's offsets. */
 const uint8_t *fsw_table_payload(const fsw_table_t *t, uint32_t *len);

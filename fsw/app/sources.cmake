@@ -1,11 +1,9 @@
-# fsw/app: tables (codec, loader, validation), the observer and impulse table images, the executive and its
-# telemetry encoder. Included by fsw/CMakeLists.txt.
+# fsw/app: the mission-agnostic executive, the table loader and codec, the telemetry header.
+# Included by fsw/CMakeLists.txt; the missions' sources come from fsw/<module>/sources.cmake.
 list(APPEND FSW_SOURCES
   app/fsw_codec.c
   app/fsw_table.c
-  app/fsw_obs_table.c
-  app/fsw_imp_table.c
   app/fsw_exec.c
   app/fsw_tlm.c
-  app/fsw_tlm_rdv.c
+  app/fsw_tlm_head.c
 )

@@ -286,7 +286,7 @@ fsw_rc_t imp_init(imp_state_t *s, const imp_params_t *p, imp_out_t *out)
     s->tlm.nav_age = UINT32_MAX;
     imp_cal_reset(s, p);
     outputs_off(out);
-    out->health = (uint32_t)IMP_MODE_IDLE << IMP_H_MODE_SHIFT;
+    out->health = (uint32_t)IMP_MODE_IDLE << IMP_H_MODE_SH;
     out->tlm = s->tlm;
     return FSW_OK;
 }
@@ -658,7 +658,7 @@ static void progress(imp_state_t *s, const imp_params_t *p, const imp_in_t *in, 
 static uint32_t health(imp_state_t *s, const imp_params_t *p, const imp_in_t *in, fx_status_t *st)
 {
     uint32_t mode = s->mode;
-    uint32_t h = ((uint32_t)mode << IMP_H_MODE_SHIFT) & IMP_H_MODE_MASK;
+    uint32_t h = ((uint32_t)mode << IMP_H_MODE_SH) & IMP_H_MODE;
     if (mode == IMP_MODE_INFEASIBLE) {
         h |= IMP_H_INFEASIBLE;
     }

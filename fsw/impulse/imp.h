@@ -30,6 +30,7 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include "fx.h"
+#include "imp_ids.h"
 
 #define IMP_NX      6u     /* state dimension */
 #define IMP_NAX     3u     /* axes */
@@ -57,84 +58,17 @@
 #define IMP_JOB_UNITS(mi) (3u + (20u * ((uint32_t)(mi) + 1u)))
 #define IMP_PLAN_WORST_ITER 240u   /* spec 50 §4.7: plan_lead >= ceil(240 / plan_iter_per_step) */
 
-/* Modes (health bits 8..11), spec 50 §5.1. */
-#define IMP_MODE_IDLE        0u
-#define IMP_MODE_PLANNING    1u
-#define IMP_MODE_ARMED       2u
-#define IMP_MODE_FIRING      3u
-#define IMP_MODE_FINAL       4u
-#define IMP_MODE_DONE        5u
-#define IMP_MODE_INFEASIBLE  6u
-#define IMP_MODE_NO_SOLUTION 7u
-#define IMP_MODE_ABORTED     8u
-#define IMP_MODE_FAULT       9u
-
-/* Health bits 8..31 (bits 0..7 are the step's fx status), spec 50 §8. */
-#define IMP_H_MODE_SHIFT     8u
-#define IMP_H_MODE_MASK      (0x00000F00u)
-#define IMP_H_INFEASIBLE     (0x00001000u)
-#define IMP_H_NO_SOLUTION    (0x00002000u)
-#define IMP_H_MARGINAL       (0x00004000u)
-#define IMP_H_NAV_STALE      (0x00008000u)
-#define IMP_H_THRUST_LEVEL   (0x00010000u)
-#define IMP_H_EXPECTED_MISS  (0x00020000u)
-#define IMP_H_INTERLOCK      (0x00040000u)
-#define IMP_H_STUCK_OFF_SH   19u            /* STUCK_OFF of axis r: bit 19 + r */
-#define IMP_H_STUCK_OFF      (0x00380000u)  /* any axis */
-#define IMP_H_STUCK_ON_SH    22u            /* STUCK_ON of axis r: bit 22 + r */
-#define IMP_H_STUCK_ON       (0x01C00000u)  /* any axis */
-#define IMP_H_CMD_REJ        (0x02000000u)  /* a command was refused in this step (reason in tlm) */
-
 /* Plan / subsystem outcome. */
 #define IMP_SOL_VALID        0u
 #define IMP_SOL_NO_SOLUTION  1u
 #define IMP_SOL_INFEASIBLE   2u
 
-/* How the polarities were found. */
-#define IMP_HOW_NONE    0u
-#define IMP_HOW_WARM    1u
-#define IMP_HOW_RULE    2u
-#define IMP_HOW_SEARCH  3u
-
-/* Attempt failure causes (index of imp_solution_t.fail_cnt). */
-#define IMP_FAIL_NONE      0u
-#define IMP_FAIL_ITER      1u   /* iteration limit */
-#define IMP_FAIL_DIVERGE   2u   /* an iterate left (-tau_f, 2 tau_f) */
-#define IMP_FAIL_SINGULAR  3u   /* |pivot| < pivot_min */
-#define IMP_FAIL_COND      4u   /* smallest / largest pivot below 2^-pivot_ratio_sh */
-#define IMP_FAIL_FX        5u   /* any other fx status bit in the attempt */
-#define IMP_FAIL_ORDER     6u   /* converged, but not 0 <= T1 <= T2 <= tau_f */
-#define IMP_FAIL_N         7u
-
-/* imp_params_check reasons (bit set in *why). Range bits give FSW_ERR_RANGE; the cross-field
-   invariants alone (LEAD, SCALE, GRID) give FSW_ERR_INVARIANT. */
-#define IMP_WHY_PERIOD   (0x00000001u)   /* period, t_min, rounding weight */
-#define IMP_WHY_ITER     (0x00000002u)   /* max_iter, plan_iter_per_step, re-plan timing */
-#define IMP_WHY_TOL      (0x00000004u)   /* r_tol, pivot_min, pivot ratio */
-#define IMP_WHY_RHO      (0x00000008u)   /* 0 < rho_warn <= rho_reject <= 1 */
-#define IMP_WHY_ALPHA    (0x00000010u)   /* alpha_j outside [0.8, 1.2] */
-#define IMP_WHY_SCALE    (0x00000020u)   /* count / tick scale constants inconsistent */
-#define IMP_WHY_TAU      (0x00000040u)   /* tau_f limits outside [0.2, 2.0] */
-#define IMP_WHY_LEAD     (0x00000080u)   /* plan_lead < ceil(worst plan / plan_iter_per_step) */
-#define IMP_WHY_GRID     (0x00000100u)   /* sub-tick grid or its scale constants */
-#define IMP_WHY_CAL      (0x00000200u)   /* calibration and expected-miss parameters */
-#define IMP_WHY_FD       (0x00000400u)   /* stuck-valve monitor parameters */
-#define IMP_WHY_NAV      (0x00000800u)   /* nav timeout and outlier gate */
+/* Scheduler modes (IMP_MODE_*, spec 50 §5.1), health bits (IMP_H_*, §8), attempt failure causes
+   (IMP_FAIL_*), polarity sources (IMP_HOW_*), command refusal reasons (IMP_REJ_*), params_check
+   reasons (IMP_WHY_*) and telecommand ids (IMP_CMD_*): imp_ids.h, generated from imp_iface.py.
+   The cross-field invariants alone (LEAD, SCALE, GRID) give FSW_ERR_INVARIANT, range bits
+   FSW_ERR_RANGE. */
 #define IMP_WHY_INVARIANTS (IMP_WHY_LEAD | IMP_WHY_SCALE | IMP_WHY_GRID)
-
-/* Reason of the last refused command (imp_tlm_t.rej_reason). */
-#define IMP_REJ_NONE    0u
-#define IMP_REJ_MODE    1u   /* START outside a terminal mode, or an unknown command */
-#define IMP_REJ_TIME    2u   /* t0 < now + plan_lead, or t_f <= t0 */
-#define IMP_REJ_TAU     3u   /* tau_f outside [tauf_min, tauf_max] */
-#define IMP_REJ_NO_NAV  4u   /* no accepted nav sample within nav_timeout (NO_NAV) */
-#define IMP_REJ_TARGET  5u   /* target (or nav state) beyond the q28 range */
-
-/* Executive commands. */
-#define IMP_CMD_NONE         0u
-#define IMP_CMD_START        1u
-#define IMP_CMD_ABORT        2u
-#define IMP_CMD_CLEAR_FAULTS 3u
 
 typedef struct {
     uint32_t period_us;            /* fsw period (valve tick) */

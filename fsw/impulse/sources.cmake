@@ -1,5 +1,6 @@
-# fsw/impulse: the impulse scheduler (spec 50-impulse): switching-time solver, module step and
-# its generated default table (python -m tools.impulse ctable).
+# fsw/impulse: the impulse scheduler (spec 50-impulse): switching-time solver, module step, its
+# generated default tables (python -m tools.impulse ctable), and the RENDEZVOUS mission: table
+# codec, adapter, telemetry block (generated from imp_iface.py).
 list(APPEND FSW_SOURCES
   impulse/imp_solve.c
   impulse/imp_sched.c
@@ -7,4 +8,7 @@ list(APPEND FSW_SOURCES
   impulse/imp_tl.c
   impulse/imp_nav.c
   impulse/imp_tables.c
+  impulse/imp_table.c
+  impulse/imp_mission.c
+  impulse/imp_tlm.c
 )

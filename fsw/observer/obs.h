@@ -16,6 +16,7 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include "fx.h"
+#include "obs_ids.h"
 
 #define OBS_NX   6u           /* plant state */
 #define OBS_NZ   7u           /* EKF state: x and kappa */
@@ -33,30 +34,8 @@
 #define OBS_EST_EKF      0u
 #define OBS_EST_CONST_W  2u   /* the paper's constant-gain structure (paper-mode S0-3 only) */
 
-/* Health bits 8..19 (bits 0..7 are the step's fx status), spec 10-observer §7. */
-#define OBS_H_NOT_INIT          (0x00000100u)
-#define OBS_H_MEAS_SKIP         (0x00000200u)
-#define OBS_H_MEAS_LOST         (0x00000400u)
-#define OBS_H_REINIT            (0x00000800u)
-#define OBS_H_K_CLAMP_LO        (0x00001000u)
-#define OBS_H_K_CLAMP_HI        (0x00002000u)
-#define OBS_H_ADAPT_FROZEN      (0x00004000u)
-#define OBS_H_CMD_LIMITED       (0x00008000u)
-#define OBS_H_CMD_LIMIT_PERSIST (0x00010000u)
-#define OBS_H_INNOV_HIGH        (0x00020000u)
-#define OBS_H_COV_CLIP          (0x00040000u)
-#define OBS_H_SEQ               (0x00080000u)
-
-/* obs_params_check reasons (bit set in *why). */
-#define OBS_WHY_PERIOD      (0x00000001u)
-#define OBS_WHY_ESTIMATOR   (0x00000002u)
-#define OBS_WHY_FORMAT      (0x00000004u)   /* a matrix Q below 16 fraction bits or above 40 */
-#define OBS_WHY_BAND        (0x00000008u)   /* band must contain kappa0 and kappa_init, lo < hi */
-#define OBS_WHY_LIMIT       (0x00000010u)   /* bdot_max not in (0, hardware limit] */
-#define OBS_WHY_COV         (0x00000020u)   /* P0 <= 0, Q below 4 LSB, floor >= ceiling, R <= 0 */
-#define OBS_WHY_SCALE       (0x00000040u)   /* scale exponents out of range */
-#define OBS_WHY_FAULT       (0x00000080u)   /* counters out of range */
-#define OBS_WHY_SENSOR      (0x00000100u)   /* gyro/actuator scaling out of range */
+/* Health bits (OBS_H_*, spec 10-observer §7) and params_check reasons (OBS_WHY_*): obs_ids.h,
+   generated from obs_iface.py. */
 
 typedef struct {
     uint32_t period_us;             /* control period; the executive's period */

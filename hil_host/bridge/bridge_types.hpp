@@ -71,10 +71,8 @@ struct TableAck {
 // that frame's step.
 constexpr std::size_t kCmdArgs = 8;
 constexpr std::size_t kCmdQueue = 16;     // telecommands held at once; more are refused (cmd_rej)
-constexpr std::int32_t kCmdMode = 1;      // fsw_cmd_t CMD_* (hil_host/lcmtypes/fsw_cmd_t.lcm)
-constexpr std::int32_t kCmdImpStart = 2;
-constexpr std::int32_t kCmdImpAbort = 3;
-constexpr std::int32_t kCmdImpClear = 4;
+constexpr std::int32_t kCmdMode = 1;      // fsw_cmd_t CMD_MODE; a mission's telecommands carry its
+                                          // namespaced ids (>= 0x100, hil_host/lcmtypes/fsw_cmd_t.lcm)
 struct FswCommand {
     std::int64_t utime = 0;
     std::int64_t apply_seq = 0;

@@ -11,8 +11,7 @@
 #include "gnc/sensor_frame_t.hpp"
 #include "gnc/sil_ctl_t.hpp"
 #include "gnc/sim_truth_t.hpp"
-#include "plant/make_plant.hpp"
-#include "sensors/gyro.hpp"
+#include "sensors/counts.hpp"
 
 namespace sil {
 
@@ -111,16 +110,17 @@ void PlantNode::on_cmd(const std::uint8_t *buf, std::size_t len)
 
 void PlantNode::inject_sensor_faults(sim::SensorFrame &f, double t_s)
 {
-    if (in_window(scn_.faults.gyro_nan_s, t_s)) {
-        // A NaN truth on channel 0 goes through the one SI -> count conversion, as a diverging
+    const std::size_t cn = scn_.faults.nan_channel, cs = scn_.faults.spike_channel;
+    if (in_window(scn_.faults.nan_s, t_s) && cn < f.n_ch) {
+        // A NaN truth on the channel goes through the one SI -> count conversion, as a diverging
         // model would (count 0, NonFinite and SAT: the bridge receives it marked STALE).
         std::uint8_t st = 0u;
-        f.cnt[0] = sim::counts_from_si(std::numeric_limits<double>::quiet_NaN(), 1.0, 1, &st);
-        f.status[0] = st;
+        f.cnt[cn] = sim::counts_from_si(std::numeric_limits<double>::quiet_NaN(), 1.0, 1, &st);
+        f.status[cn] = st;
         ++sum_.nan_frames;
     }
-    if (in_window(scn_.faults.gyro_spike_s, t_s)) {
-        f.cnt[0] = std::numeric_limits<std::int32_t>::max();   // beyond any sensor table limit
+    if (in_window(scn_.faults.spike_s, t_s) && cs < f.n_ch) {
+        f.cnt[cs] = std::numeric_limits<std::int32_t>::max();   // beyond any sensor table limit
         ++sum_.spike_frames;
     }
 }
@@ -188,7 +188,7 @@ void PlantNode::publish_ctl(std::int32_t command, std::int32_t status)
     for (std::size_t i = 0; i < 32u; ++i) {
         m.scenario[i] = (i < scn_.name.size()) ? static_cast<std::uint8_t>(scn_.name[i]) : 0u;
     }
-    m.seed = static_cast<std::int64_t>(scn_.gyro.seed);
+    m.seed = static_cast<std::int64_t>(sim::mission_section(scn_.mission).noise_seed(scn_));
     m.node_id = gnc::sil_ctl_t::NODE_PLANT;
     m.status = status;
     const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));

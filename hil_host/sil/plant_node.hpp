@@ -3,7 +3,7 @@
 // The simulator owns the clock: publish frame k (and truth k), wait for command k, apply it
 // (or hold the last one: a missed command), propagate, repeat. Faults of the scenario are
 // applied on the way out (hil_host/fault: drop, duplicate, reorder, bit flip, truncate; plus
-// a NaN gyro truth and an out-of-range count window).
+// a NaN truth and an out-of-range count window on one channel).
 //
 // Two waiting disciplines:
 //   sync  (memq, one thread): the plant drains the lcm_t queue; everything the bridge will ever
@@ -13,8 +13,8 @@
 // Missed commands are announced on GNC_CTL (HEARTBEAT from NODE_PLANT, status = missed count)
 // before the next frame, so the bridge reports them in telemetry. The scenario's telecommands
 // (its `commands:` list, the test conductor) go out on GNC_FSW_CMD before the first frame at or
-// after their time, with apply_seq = that frame's seq. The plant itself is whatever the
-// scenario names (sim::make_plant).
+// after their time, with apply_seq = that frame's seq. The plant is the scenario's mission's
+// (sim::make_plant, from the mission registry).
 #ifndef HIL_SIL_PLANT_NODE_HPP
 #define HIL_SIL_PLANT_NODE_HPP
 

@@ -1,54 +1,37 @@
-// sil — software-in-the-loop driver (spec 00 §5).
+// sil — software-in-the-loop driver (spec 00 §5), for any mission of the build.
 //
-//   sil run    --scenario F [--url memq://] [--log F] [--summary F] [--upload IMG@T[:REV]]... [--progress]
-//              [--fsw fixed|ref|ref-per-axis]
-//              plant + bridge (fixed-point flight code, or the double reference) + log tap in ONE
-//              process on one lcm_t.
-//   sil plant  --scenario F --url udpm://... [--summary F] [--ready-timeout-ms N] [--progress]
+//   sil run    --scenario F [--url memq://] [--log F] [--summary F] [--summary-json F]
+//              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...]
+//              plant + bridge (fixed-point flight code, or the mission's double reference) + log
+//              tap in ONE process on one lcm_t.
+//   sil plant  --scenario F --url udpm://... [--summary F] [--summary-json F] [--ready-timeout-ms N] [--progress]
 //   sil bridge --scenario F --url udpm://... [--idle-timeout-ms N]
 //   sil ping   --url udpm://...    one runner heartbeat on GNC_CTL (logger start-up handshake)
 //   sil logger --url udpm://... --log F [--idle-timeout-ms N]   lossless event logger of a udpm run
 //              the two ends as separate processes (udpm); log with lcm-logger.
 // Exit: 0 run completed (also a DIVERGED end: that is a result, in the summary), 1 error,
-// 2 usage, 77 lcm_create failed (no multicast on loopback).
+// 2 usage (CLI11 names the bad option), 77 lcm_create failed (no multicast on loopback).
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include "bridge.hpp"
 #include "bridge_node.hpp"
 #include "channels.hpp"
+#include "fsw_backend.hpp"
 #include "gnc/sil_ctl_t.hpp"
 #include "log_tap.hpp"
-#include "fsw_backend.hpp"
 #include "metrics.hpp"
 #include "plant_node.hpp"
 #include "sil_run.hpp"
 
 namespace {
-
-int usage()
-{
-    std::fprintf(stderr,
-                 "usage: sil run|plant|bridge|ping|logger --scenario FILE [--url URL] [--log FILE] [--summary FILE]\n"
-                 "           [--upload IMAGE@T_S[:REV]] [--progress] [--fsw fixed|ref|ref-per-axis]\n"
-                 "           [--ready-timeout-ms N] [--idle-timeout-ms N]\n");
-    return 2;
-}
-
-std::vector<std::uint8_t> read_file(const std::string &p)
-{
-    std::ifstream f(p, std::ios::binary);
-    if (!f) {
-        throw std::runtime_error("cannot read '" + p + "'");
-    }
-    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
 
 void write_text(const std::string &path, const std::string &s)
 {
@@ -73,124 +56,178 @@ lcm_t *create_or_exit(const std::string &url)
     return l;
 }
 
+// IMG@T: a table image file and the run time (s) before whose frame it is uploaded. Table id and
+// revision are the image header's own.
+sil::Upload parse_upload(const std::string &arg, double duration_s)
+{
+    const auto at = arg.rfind('@');
+    if (at == std::string::npos || at == 0 || at + 1 >= arg.size()) {
+        throw std::invalid_argument("--upload " + arg + ": expected IMAGE@T_S (a table image file and a time in s)");
+    }
+    const std::string t = arg.substr(at + 1);
+    if (t.find(':') != std::string::npos) {
+        throw std::invalid_argument("--upload " + arg + ": no revision suffix: table id and revision come from "
+                                    "the image header");
+    }
+    double ts = 0.0;
+    std::size_t used = 0;
+    try {
+        ts = std::stod(t, &used);
+    } catch (const std::exception &) {
+        used = 0;
+    }
+    if (used != t.size() || !(ts >= 0.0)) {
+        throw std::invalid_argument("--upload " + arg + ": time '" + t + "' is not a non-negative number of seconds");
+    }
+    if (ts >= duration_s) {
+        throw std::invalid_argument("--upload " + arg + ": time " + t + " s is not inside the run (duration " +
+                                    std::to_string(duration_s) + " s)");
+    }
+    return sil::upload_from_file(arg.substr(0, at), ts);
+}
+
+void write_summary(const host::Summary &s, const std::string &text, const std::string &json)
+{
+    write_text(text, s.text());
+    write_text(json, s.json());
+}
+
+int ping(const std::string &url)
+{
+    // One runner heartbeat on GNC_CTL: the run script publishes it until the logger has written
+    // something, so the logger is known to be listening before the run starts.
+    lcm_t *lcm = create_or_exit(url);
+    gnc::sil_ctl_t m{};
+    m.command = gnc::sil_ctl_t::CMD_HEARTBEAT;
+    m.node_id = gnc::sil_ctl_t::NODE_RUNNER;
+    std::vector<std::uint8_t> b(static_cast<std::size_t>(m.getEncodedSize()));
+    const int n = m.encode(b.data(), 0, static_cast<int>(b.size()));
+    const int rc = (n > 0) ? lcm_publish(lcm, sil::kChCtl, b.data(), static_cast<unsigned>(n)) : -1;
+    lcm_destroy(lcm);
+    return rc == 0 ? 0 : 1;
+}
+
+int logger(const std::string &url, const std::string &log, int idle_ms)
+{
+    // Separate-process logger of a udpm run: every channel to a standard LCM event log,
+    // wall-clock timestamps, until the plant's STOP plus 500 ms of silence (idle_ms without any
+    // message ends it too). Lossless where lcm-logger is not (log_tap.hpp).
+    lcm_t *lcm = create_or_exit(url);
+    std::uint64_t n = 0;
+    {
+        sil::LogTap tap(lcm, log, []() {
+            return static_cast<std::int64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                std::chrono::system_clock::now().time_since_epoch()).count());
+        });
+        bool stop = false;
+        lcm_subscription_t *sub = lcm_subscribe(
+            lcm, sil::kChCtl,
+            [](const lcm_recv_buf_t *rb, const char *, void *u) {
+                gnc::sil_ctl_t m;
+                if (m.decode(rb->data, 0, static_cast<int>(rb->data_size)) >= 0 &&
+                    m.command == gnc::sil_ctl_t::CMD_STOP && m.node_id == gnc::sil_ctl_t::NODE_PLANT) {
+                    *static_cast<bool *>(u) = true;
+                }
+            },
+            &stop);
+        int quiet_ms = 0;
+        const int tick = 50;
+        while (quiet_ms < (stop ? 500 : idle_ms)) {
+            const int r = lcm_handle_timeout(lcm, tick);
+            quiet_ms = (r > 0) ? 0 : quiet_ms + tick;
+        }
+        lcm_unsubscribe(lcm, sub);
+        n = tap.events();
+    }
+    lcm_destroy(lcm);
+    std::fprintf(stderr, "sil logger: %llu events to %s\n", static_cast<unsigned long long>(n), log.c_str());
+    return 0;
+}
+
+void progress_line(sil::PlantNode &pn, const char *who)
+{
+    pn.set_progress([who](std::uint64_t k, std::uint64_t n) {
+        if (k % 5000u == 0u || k == n) {
+            std::fprintf(stderr, "\r  %s: step %llu / %llu", who, static_cast<unsigned long long>(k),
+                         static_cast<unsigned long long>(n));
+            if (k == n) { std::fprintf(stderr, "\n"); }
+        }
+    });
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        return usage();
-    }
-    const std::string mode = argv[1];
-    std::string scn_path, url, log, summary, fsw = "fixed";
-    std::vector<sil::Upload> uploads;
+    CLI::App app{"sil — software-in-the-loop driver: plant, bridge and flight code over LCM"};
+    app.require_subcommand(1);
+    std::string scn_path, url, log, summary, summary_json, fsw = "fixed";
+    std::vector<std::string> uploads;
     bool progress = false;
     int ready_ms = 10000, idle_ms = 30000;
-    for (int i = 2; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto val = [&](std::string &dst) {
-            if (i + 1 >= argc) { std::exit(usage()); }
-            dst = argv[++i];
-        };
-        std::string tmp;
-        if (a == "--scenario") { val(scn_path); }
-        else if (a == "--url") { val(url); }
-        else if (a == "--log") { val(log); }
-        else if (a == "--summary") { val(summary); }
-        else if (a == "--progress") { progress = true; }
-        else if (a == "--fsw") { val(fsw); }
-        else if (a == "--ready-timeout-ms") { val(tmp); ready_ms = std::atoi(tmp.c_str()); }
-        else if (a == "--idle-timeout-ms") { val(tmp); idle_ms = std::atoi(tmp.c_str()); }
-        else if (a == "--upload") {
-            val(tmp);
-            const auto at = tmp.rfind('@');
-            if (at == std::string::npos) { return usage(); }
-            sil::Upload u;
-            u.image = read_file(tmp.substr(0, at));
-            std::string rest = tmp.substr(at + 1);
-            const auto colon = rest.find(':');
-            u.t_s = std::atof(rest.substr(0, colon).c_str());
-            if (colon != std::string::npos) { u.revision = std::atoi(rest.substr(colon + 1).c_str()); }
-            uploads.push_back(u);
-        } else {
-            return usage();
-        }
-    }
-    if (mode == "ping") {
-        // One runner heartbeat on GNC_CTL: the run script publishes it until the logger has
-        // written something, so the logger is known to be listening before the run starts.
-        if (url.empty()) {
-            return usage();
-        }
-        lcm_t *lcm = create_or_exit(url);
-        gnc::sil_ctl_t m{};
-        m.command = gnc::sil_ctl_t::CMD_HEARTBEAT;
-        m.node_id = gnc::sil_ctl_t::NODE_RUNNER;
-        std::vector<std::uint8_t> b(static_cast<std::size_t>(m.getEncodedSize()));
-        const int n = m.encode(b.data(), 0, static_cast<int>(b.size()));
-        const int rc = (n > 0) ? lcm_publish(lcm, sil::kChCtl, b.data(), static_cast<unsigned>(n)) : -1;
-        lcm_destroy(lcm);
-        return rc == 0 ? 0 : 1;
-    }
-    if (mode == "logger") {
-        // Separate-process logger of a udpm run: every channel to a standard LCM event log,
-        // wall-clock timestamps, until the plant's STOP plus idle_ms of silence (default 30 s
-        // without any message ends it too). Lossless where lcm-logger is not (log_tap.hpp).
-        if (url.empty() || log.empty()) {
-            return usage();
-        }
-        lcm_t *lcm = create_or_exit(url);
-        std::uint64_t n = 0;
-        {
-            sil::LogTap tap(lcm, log, []() {
-                return static_cast<std::int64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
-                    std::chrono::system_clock::now().time_since_epoch()).count());
-            });
-            bool stop = false;
-            lcm_subscription_t *sub = lcm_subscribe(
-                lcm, sil::kChCtl,
-                [](const lcm_recv_buf_t *rb, const char *, void *u) {
-                    gnc::sil_ctl_t m;
-                    if (m.decode(rb->data, 0, static_cast<int>(rb->data_size)) >= 0 &&
-                        m.command == gnc::sil_ctl_t::CMD_STOP && m.node_id == gnc::sil_ctl_t::NODE_PLANT) {
-                        *static_cast<bool *>(u) = true;
-                    }
-                },
-                &stop);
-            int quiet_ms = 0;
-            const int tick = 50;
-            while (quiet_ms < (stop ? 500 : idle_ms)) {
-                const int r = lcm_handle_timeout(lcm, tick);
-                quiet_ms = (r > 0) ? 0 : quiet_ms + tick;
-            }
-            lcm_unsubscribe(lcm, sub);
-            n = tap.events();
-        }
-        lcm_destroy(lcm);
-        std::fprintf(stderr, "sil logger: %llu events to %s\n", static_cast<unsigned long long>(n), log.c_str());
-        return 0;
-    }
-    if (scn_path.empty()) {
-        return usage();
-    }
+    const std::string url_help = "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0";
+
+    CLI::App *run = app.add_subcommand("run", "plant + bridge + flight code in one process (memq by default)");
+    run->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
+    run->add_option("--url", url, "LCM URL (default memq://)");
+    run->add_option("--log", log, "LCM event log to write");
+    run->add_option("--summary", summary, "summary text to write");
+    run->add_option("--summary-json", summary_json, "summary JSON to write");
+    run->add_option("--upload", uploads, "IMAGE@T_S: upload a table image before the frame at T_S");
+    run->add_option("--fsw", fsw, "flight software: fixed, or the mission's reference (ref, ...)");
+    run->add_flag("--progress", progress, "progress line on stderr");
+
+    CLI::App *plant = app.add_subcommand("plant", "the plant node of a separate-process run");
+    plant->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
+    plant->add_option("--url", url, url_help)->required();
+    plant->add_option("--summary", summary, "summary text to write");
+    plant->add_option("--summary-json", summary_json, "summary JSON to write");
+    plant->add_option("--ready-timeout-ms", ready_ms, "wait this long for the bridge")->check(CLI::Range(1, 600000));
+    plant->add_flag("--progress", progress, "progress line on stderr");
+
+    CLI::App *br = app.add_subcommand("bridge", "the bridge node (fixed-point flight code) of a separate-process run");
+    br->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
+    br->add_option("--url", url, url_help)->required();
+    br->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")->check(CLI::Range(1, 3600000));
+
+    CLI::App *pg = app.add_subcommand("ping", "one runner heartbeat on GNC_CTL");
+    pg->add_option("--url", url, url_help)->required();
+
+    CLI::App *lg = app.add_subcommand("logger", "lossless event logger of a udpm run");
+    lg->add_option("--url", url, url_help)->required();
+    lg->add_option("--log", log, "LCM event log to write")->required();
+    lg->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")->check(CLI::Range(1, 3600000));
+
     try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        const int rc = app.exit(e);
+        return (rc == 0) ? 0 : 2;
+    }
+
+    try {
+        if (*pg) {
+            return ping(url);
+        }
+        if (*lg) {
+            return logger(url, log, idle_ms);
+        }
         const sim::Scenario scn = sim::load_scenario(scn_path);
-        if (mode == "run") {
+        if (*run) {
             sil::InprocOptions o;
             o.url = url.empty() ? "memq://" : url;
             o.log_path = log;
-            o.uploads = uploads;
             o.progress = progress;
-            o.fsw = sil::fsw_kind(fsw);
+            o.fsw = fsw;
+            for (const std::string &u : uploads) {
+                o.uploads.push_back(parse_upload(u, scn.duration_s));
+            }
             const sil::InprocResult r = sil::run_inproc(scn, o);
-            std::cout << r.summary;
-            write_text(summary, r.summary);
+            std::cout << r.summary.text();
+            write_summary(r.summary, summary, summary_json);
             return 0;
         }
-        if (url.empty()) {
-            std::fprintf(stderr, "sil %s: --url is required (e.g. udpm://239.255.76.67:7667?ttl=0)\n", mode.c_str());
-            return 2;
-        }
-        if (mode == "bridge") {
+        if (*br) {
             lcm_t *lcm = create_or_exit(url);
             int rc = 1;
             {   // the node unsubscribes in its destructor: it must go before lcm_destroy
@@ -204,40 +241,42 @@ int main(int argc, char **argv)
             lcm_destroy(lcm);
             return rc == 0 ? 0 : 1;
         }
-        if (mode == "plant") {
-            lcm_t *lcm = create_or_exit(url);
-            sil::InprocResult r;
-            {
-                sil::PlantNode pn(lcm, scn, false);
-                sil::MetricsTap mt(lcm, scn.duration_s - 20.0);
-                sil::configure_metrics(mt, scn);
-                if (!pn.wait_for_bridge(ready_ms)) {
-                    std::fprintf(stderr, "sil plant: no bridge READY on %s within %d ms\n", url.c_str(), ready_ms);
-                    lcm_destroy(lcm);
-                    return 1;
+        // plant
+        lcm_t *lcm = create_or_exit(url);
+        host::Summary s;
+        {
+            sil::PlantNode pn(lcm, scn, false);
+            sil::MetricsTap mt(lcm, scn);
+            const std::vector<sil::Upload> ups = sil::run_uploads(scn, {});
+            std::vector<bool> sent(ups.size(), false);
+            pn.set_before_frame([&](std::uint64_t, std::int64_t utime) {
+                for (std::size_t i = 0; i < ups.size(); ++i) {
+                    if (!sent[i] && static_cast<double>(utime) * 1e-6 >= ups[i].t_s) {
+                        sil::publish_upload(lcm, ups[i], utime);
+                        sent[i] = true;
+                    }
                 }
-                if (progress) {
-                    pn.set_progress([](std::uint64_t k, std::uint64_t n) {
-                        if (k % 5000u == 0u || k == n) {
-                            std::fprintf(stderr, "\r  sil plant: step %llu / %llu", static_cast<unsigned long long>(k),
-                                         static_cast<unsigned long long>(n));
-                            if (k == n) { std::fprintf(stderr, "\n"); }
-                        }
-                    });
-                }
-                r.plant = pn.run();
-                // Let the last telemetry arrive before the summary.
-                for (int i = 0; i < 20 && lcm_handle_timeout(lcm, 10) > 0; ++i) {
-                }
-                r.summary = "scenario = " + scn.name + "\nmodel = " + sim::sigma_name(scn.sigma) + "\ntable = " +
-                            scn.fsw.table + "\ntransport = " + url + "\n" + sil::plant_summary(r.plant) + mt.summary();
+            });
+            if (!pn.wait_for_bridge(ready_ms)) {
+                std::fprintf(stderr, "sil plant: no bridge READY on %s within %d ms\n", url.c_str(), ready_ms);
+                lcm_destroy(lcm);
+                return 1;
             }
-            lcm_destroy(lcm);
-            std::cout << r.summary;
-            write_text(summary, r.summary);
-            return 0;
+            if (progress) {
+                progress_line(pn, "sil plant");
+            }
+            const sil::PlantSummary p = pn.run();
+            // Let the last telemetry arrive before the summary.
+            for (int i = 0; i < 20 && lcm_handle_timeout(lcm, 10) > 0; ++i) {
+            }
+            sil::run_header(scn, "sil-fsw", url, s);
+            sil::plant_summary(p, s);
+            mt.summary(s);
         }
-        return usage();
+        lcm_destroy(lcm);
+        std::cout << s.text();
+        write_summary(s, summary, summary_json);
+        return 0;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "sil: %s\n", e.what());
         return 1;

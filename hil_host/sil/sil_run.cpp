@@ -2,28 +2,72 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
 
 #include "bridge.hpp"
 #include "bridge_node.hpp"
 #include "channels.hpp"
-#include "fsw_backend.hpp"
 #include "gnc/table_upload_t.hpp"
 #include "log_tap.hpp"
-#include "ref_backend.hpp"
 
 namespace sil {
+
+namespace {
+
+std::uint32_t le32(const std::vector<std::uint8_t> &b, std::size_t off)
+{
+    return static_cast<std::uint32_t>(b[off]) | (static_cast<std::uint32_t>(b[off + 1]) << 8) |
+           (static_cast<std::uint32_t>(b[off + 2]) << 16) | (static_cast<std::uint32_t>(b[off + 3]) << 24);
+}
+
+}  // namespace
+
+Upload upload_from_file(const std::string &path, double t_s)
+{
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+        throw std::invalid_argument("table image '" + path + "': cannot be read (no such file)");
+    }
+    if (!S_ISREG(st.st_mode)) {
+        throw std::invalid_argument("table image '" + path + "': not a regular file");
+    }
+    std::ifstream f(path, std::ios::binary);
+    if (!f) {
+        throw std::invalid_argument("table image '" + path + "': cannot be read (permission?)");
+    }
+    Upload u;
+    u.t_s = t_s;
+    u.what = path;
+    u.image.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    if (u.image.size() < FSW_TABLE_HDR_BYTES) {
+        throw std::invalid_argument("table image '" + path + "': " + std::to_string(u.image.size()) +
+                                    " bytes, shorter than the " + std::to_string(FSW_TABLE_HDR_BYTES) +
+                                    "-byte table header");
+    }
+    if (u.image.size() > FSW_TABLE_CAP_BYTES) {
+        throw std::invalid_argument("table image '" + path + "': " + std::to_string(u.image.size()) +
+                                    " bytes, more than the loader's " + std::to_string(FSW_TABLE_CAP_BYTES));
+    }
+    return u;
+}
 
 void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
 {
     std::vector<std::uint8_t> buf(1024);
     const std::size_t total = u.image.size();
+    // Table id and revision from the image's own header (fsw_table.h): the chunks can never
+    // disagree with the image they carry.
+    const std::int32_t table_id = (total >= 2u) ? static_cast<std::int32_t>(u.image[0] | (u.image[1] << 8)) : 0;
+    const std::uint32_t rev = (total >= 12u) ? le32(u.image, 8) : 0u;
     for (std::size_t off = 0; off < total; off += 256u) {
         gnc::table_upload_t m{};
         m.utime = utime_us;
-        m.table_id = u.table_id;
-        m.revision = u.revision;
+        m.table_id = table_id;
+        m.revision = static_cast<std::int32_t>(rev & 0x7FFFFFFFu);
         m.total_len = static_cast<std::int32_t>(total);
         m.offset = static_cast<std::int32_t>(off);
         const std::size_t n = (total - off < 256u) ? (total - off) : 256u;
@@ -38,91 +82,63 @@ void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
     }
 }
 
-std::string plant_summary(const PlantSummary &p)
+void plant_summary(const PlantSummary &p, host::Summary &s)
 {
-    std::ostringstream o;
-    o << "plant_steps = " << p.steps << "\nplant_t_end_s = " << p.t_end_s << "\nplant_missed = " << p.missed
-      << "\nplant_retx = " << p.retx << "\nplant_late_cmds = " << p.late_cmds << "\nplant_dup_cmds = " << p.dup_cmds
-      << "\nplant_bad_cmds = " << p.bad_cmds << "\nplant_nan_frames = " << p.nan_frames
-      << "\nplant_spike_frames = " << p.spike_frames << "\nfault_dropped = " << p.faults.dropped
-      << "\nfault_duplicated = " << p.faults.duplicated << "\nfault_reordered = " << p.faults.reordered
-      << "\nfault_bitflipped = " << p.faults.bitflipped << "\nfault_truncated = " << p.faults.truncated
-      << "\nplant_diverged = " << (p.diverged ? 1 : 0) << "\nplant_end = " << (p.reason.empty() ? "completed" : p.reason)
-      << "\ndeterministic = " << (p.deterministic() ? "yes" : "no (missed or re-sent frames)") << "\n";
-    return o.str();
+    s.add_int("plant_steps", static_cast<std::int64_t>(p.steps));
+    s.add("plant_t_end_s", p.t_end_s, "%g");
+    s.add_int("plant_missed", static_cast<std::int64_t>(p.missed));
+    s.add_int("plant_retx", static_cast<std::int64_t>(p.retx));
+    s.add_int("plant_late_cmds", static_cast<std::int64_t>(p.late_cmds));
+    s.add_int("plant_dup_cmds", static_cast<std::int64_t>(p.dup_cmds));
+    s.add_int("plant_bad_cmds", static_cast<std::int64_t>(p.bad_cmds));
+    s.add_int("plant_nan_frames", static_cast<std::int64_t>(p.nan_frames));
+    s.add_int("plant_spike_frames", static_cast<std::int64_t>(p.spike_frames));
+    s.add_int("fault_dropped", static_cast<std::int64_t>(p.faults.dropped));
+    s.add_int("fault_duplicated", static_cast<std::int64_t>(p.faults.duplicated));
+    s.add_int("fault_reordered", static_cast<std::int64_t>(p.faults.reordered));
+    s.add_int("fault_bitflipped", static_cast<std::int64_t>(p.faults.bitflipped));
+    s.add_int("fault_truncated", static_cast<std::int64_t>(p.faults.truncated));
+    s.add_int("plant_diverged", p.diverged ? 1 : 0);
+    s.add_str("plant_end", p.reason.empty() ? std::string("completed") : p.reason);
+    s.add_str("deterministic", p.deterministic() ? "yes" : "no (missed or re-sent frames)");
 }
 
-FswKind fsw_kind(const std::string &name)
+void run_header(const sim::Scenario &scn, const std::string &fsw, const std::string &url, host::Summary &s)
 {
-    if (name == "fixed") { return FswKind::Fixed; }
-    if (name == "ref") { return FswKind::Ref; }
-    if (name == "ref-per-axis") { return FswKind::RefPerAxis; }
-    throw std::invalid_argument("unknown flight software '" + name + "' (fixed, ref, ref-per-axis)");
+    s.add_str("scenario", scn.name);
+    s.add_str("scenario_file", scn.source);
+    s.add_str("table", scn.fsw.table_file.empty() ? scn.fsw.table : scn.fsw.table_file);
+    s.add_str("fsw", fsw);
+    s.add_str("transport", url);
 }
-
-void configure_metrics(MetricsTap &mt, const sim::Scenario &scn)
-{
-    if (scn.plant != "cw") {
-        return;
-    }
-    std::int64_t t0 = -1, tf = -1;
-    for (const sim::ScnCommand &c : scn.commands) {
-        if (c.cmd == bridge::kCmdImpStart && tf < 0) {
-            t0 = c.args[0];
-            tf = c.args[1];
-        }
-    }
-    mt.set_rendezvous(t0, tf);
-}
-
-namespace {
-
-// The scenario's impulse boot table with its operator overrides.
-imp_params_t boot_imp(const sim::Scenario &scn)
-{
-    imp_params_t t = bridge::boot_imp_table(scn.fsw.table);
-    if (scn.fsw.cal_enable >= 0) {
-        t.cal_enable = static_cast<std::uint8_t>(scn.fsw.cal_enable);
-    }
-    return t;
-}
-
-std::unique_ptr<bridge::Backend> make_ref_backend(const sim::Scenario &scn, FswKind kind)
-{
-    if (scn.plant == "cw") {
-        if (kind != FswKind::Ref) {
-            throw std::invalid_argument("plant cw: only --fsw fixed or ref");
-        }
-        return std::unique_ptr<bridge::Backend>(new bridge::RefImpBackend(boot_imp(scn)));
-    }
-    const obs_params_t t = bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
-    return std::unique_ptr<bridge::Backend>(new bridge::RefObsBackend(t, kind == FswKind::RefPerAxis));
-}
-
-}  // namespace
 
 std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn)
 {
-    std::unique_ptr<bridge::InProcessFswBackend> be;
-    std::uint32_t period = 0u;
-    if (scn.plant == "cw") {
-        const imp_params_t t = boot_imp(scn);
-        period = t.period_us;
-        be.reset(new bridge::InProcessFswBackend(t));
-    } else {
-        const obs_params_t t = bridge::boot_obs_table(scn.fsw.table, scn.fsw.k_hat0, scn.fsw.bdot_max_degps);
-        period = t.period_us;
-        be.reset(new bridge::InProcessFswBackend(t));
-    }
-    if (period != scn.period_us) {
-        throw std::runtime_error("scenario period_us " + std::to_string(scn.period_us) + " != table " +
-                                 scn.fsw.table + " period " + std::to_string(period));
+    const host::MissionHost &mh = host::mission_host(scn.mission);
+    std::unique_ptr<bridge::InProcessFswBackend> be(new bridge::InProcessFswBackend(host::fsw_cfg(scn), mh.boot_image(scn)));
+    if (be->boot_rc() != FSW_OK) {
+        throw std::runtime_error("the " + std::string(mh.iface().name) + " boot table '" + scn.fsw.table +
+                                 "' was refused by the flight loader: " +
+                                 host::describe_reason(mh.iface(), be->fsw().tlm.tbl_reason) +
+                                 " (scenario period_us " + std::to_string(scn.period_us) + ")");
     }
     return be;
 }
 
+std::vector<Upload> run_uploads(const sim::Scenario &scn, const std::vector<Upload> &extra)
+{
+    std::vector<Upload> v;
+    if (!scn.fsw.table_file.empty()) {
+        v.push_back(upload_from_file(scn.fsw.table_file, 0.0));
+    }
+    v.insert(v.end(), extra.begin(), extra.end());
+    return v;
+}
+
 InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
 {
+    const host::MissionHost &mh = host::mission_host(scn.mission);
+    std::vector<Upload> uploads = run_uploads(scn, opt.uploads);
     lcm_t *lcm = lcm_create(opt.url.c_str());
     if (lcm == nullptr) {
         throw std::runtime_error("lcm_create failed for URL '" + opt.url + "'");
@@ -131,8 +147,14 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
     try {
         std::unique_ptr<bridge::InProcessFswBackend> fixed = make_fixed_backend(scn);
         std::unique_ptr<bridge::Backend> refbe;
-        if (opt.fsw != FswKind::Fixed) {
-            refbe = make_ref_backend(scn, opt.fsw);
+        if (opt.fsw != "fixed") {
+            // The reference flies the same table as the flight code would: the scenario's table
+            // file, else its boot table. It takes no uploads.
+            const std::vector<std::uint8_t> image = scn.fsw.table_file.empty() ? mh.boot_image(scn) : uploads.front().image;
+            refbe = mh.make_ref(scn, opt.fsw, image);
+            if (!scn.fsw.table_file.empty()) {
+                uploads.erase(uploads.begin());
+            }
         }
         bridge::Backend &be = refbe ? *refbe : static_cast<bridge::Backend &>(*fixed);
         bridge::Bridge core(be, fixed->sensor_limits());
@@ -143,13 +165,12 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
         if (!opt.log_path.empty()) {
             tap.reset(new LogTap(lcm, opt.log_path, [&pn]() { return pn.utime_us(); }));
         }
-        MetricsTap mt(lcm, scn.duration_s - 20.0);
-        configure_metrics(mt, scn);
-        std::vector<bool> sent(opt.uploads.size(), false);
+        MetricsTap mt(lcm, scn);
+        std::vector<bool> sent(uploads.size(), false);
         pn.set_before_frame([&](std::uint64_t, std::int64_t utime) {
-            for (std::size_t i = 0; i < opt.uploads.size(); ++i) {
-                if (!sent[i] && static_cast<double>(utime) * 1e-6 >= opt.uploads[i].t_s) {
-                    publish_upload(lcm, opt.uploads[i], utime);
+            for (std::size_t i = 0; i < uploads.size(); ++i) {
+                if (!sent[i] && static_cast<double>(utime) * 1e-6 >= uploads[i].t_s) {
+                    publish_upload(lcm, uploads[i], utime);
                     sent[i] = true;
                 }
             }
@@ -163,9 +184,6 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
                 }
             });
         }
-        if (!sync && !pn.wait_for_bridge(0)) {
-            // same process: the bridge is subscribed already; nothing to wait for
-        }
         const auto w0 = std::chrono::steady_clock::now();
         res.plant = pn.run();
         res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
@@ -176,15 +194,15 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
                 quiet = (lcm_handle_timeout(lcm, 10) > 0) ? 0 : quiet + 10;
             }
         }
-        res.metrics = mt.m();
+        res.core = mt.core();
+        res.mission = mt.mission_ptr();
         res.bridge = core.counters();
         res.log_events = tap ? tap->events() : 0u;
-        std::ostringstream o;
-        o << "scenario = " << scn.name << "\nmodel = " << sim::sigma_name(scn.sigma) << "\ntable = " << scn.fsw.table
-          << "\nfsw = " << be.name() << "\ntransport = " << opt.url << "\n"
-          << plant_summary(res.plant) << mt.summary() << "wall_s = " << res.wall_s << "\nsteps_per_s = "
-          << (res.wall_s > 0.0 ? static_cast<double>(res.plant.steps) / res.wall_s : 0.0) << "\n";
-        res.summary = o.str();
+        run_header(scn, be.name(), opt.url, res.summary);
+        plant_summary(res.plant, res.summary);
+        mt.summary(res.summary);
+        res.summary.add("wall_s", res.wall_s, "%g");
+        res.summary.add("steps_per_s", res.wall_s > 0.0 ? static_cast<double>(res.plant.steps) / res.wall_s : 0.0, "%g");
     } catch (...) {
         lcm_destroy(lcm);
         throw;

@@ -1,6 +1,8 @@
 // sil_run.hpp — the in-process lock-step driver (spec 00 §5.3): plant node, bridge node with the
-// fixed-point flight code, metrics and (optionally) the event-log tap on ONE lcm_t, alternated
-// on one thread. With memq:// it is fully deterministic.
+// fixed-point flight code (or a mission's double reference), metrics and (optionally) the
+// event-log tap on ONE lcm_t, alternated on one thread. With memq:// it is fully deterministic.
+// Mission-agnostic: the scenario's mission supplies its plant, boot table, reference and metrics
+// (hil_host/missions/<module>).
 #ifndef HIL_SIL_RUN_HPP
 #define HIL_SIL_RUN_HPP
 
@@ -17,22 +19,21 @@
 
 namespace sil {
 
+// A table image sent to the flight software through the table upload path. Table id and revision
+// are the image header's own (a ground tool writes them), so an upload cannot disagree with them.
 struct Upload {
     double t_s = 0.0;                 // published before the first frame at or after t_s
-    std::int32_t table_id = 0x0B01;
-    std::int32_t revision = 2;
     std::vector<std::uint8_t> image;  // whole image, sent in 256-byte chunks
+    std::string what;                 // its origin, for messages (a file name)
 };
 
-// Which flight software closes the loop: the fixed-point flight code through the executive
-// (the product), or the double reference of the observer step (spec 10 S0-8), optionally with
-// per-axis command clipping (analysis only, spec 10 S0-9).
-enum class FswKind { Fixed, Ref, RefPerAxis };
-FswKind fsw_kind(const std::string &name);   // "fixed" | "ref" | "ref-per-axis"; throws otherwise
+// An upload of an image file; throws std::invalid_argument with a clear message for a file that
+// cannot be read, is empty, or is shorter than a table header.
+Upload upload_from_file(const std::string &path, double t_s);
 
 struct InprocOptions {
     std::string url = "memq://";
-    FswKind fsw = FswKind::Fixed;
+    std::string fsw = "fixed";        // "fixed", or one of the mission's reference kinds ("ref", ...)
     std::string log_path;             // empty: no log
     std::vector<Upload> uploads;
     bool progress = false;            // progress line on stderr
@@ -40,28 +41,33 @@ struct InprocOptions {
 
 struct InprocResult {
     PlantSummary plant;
-    Metrics metrics;
+    CoreMetrics core;
+    std::shared_ptr<const host::MissionMetrics> mission;
     bridge::Counters bridge{};
     std::uint64_t log_events = 0;
     double wall_s = 0.0;              // wall clock of the lock-step loop (benchmarks only)
-    std::string summary;              // key = value lines (plant, bridge, metrics)
+    host::Summary summary;            // plant, bridge, executive and mission keys
+    // The mission's metrics as its own type (host::ObsMetrics, host::ImpMetrics, ...).
+    template <class T> const T &metrics() const { return dynamic_cast<const T &>(*mission); }
 };
 
 InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt);
 
-// The fixed-point flight software for a scenario: the executive with the boot table the
-// scenario names (observer for plant sail, impulse scheduler for plant cw). Throws when the
-// table's period differs from the scenario's.
+// The fixed-point flight software for a scenario: the executive booted from the mission's boot
+// table the scenario names. Throws std::runtime_error naming the refusal when the boot table does
+// not load (e.g. its period differs from the scenario's).
 std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn);
+
+// The uploads of a run: the scenario's table_file (at t = 0, before the first step) and the extra
+// ones given.
+std::vector<Upload> run_uploads(const sim::Scenario &scn, const std::vector<Upload> &extra);
 
 // Publishes one table image in chunks on GNC_TBL_UP.
 void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us);
 
-std::string plant_summary(const PlantSummary &p);
-
-// The metrics tap for a scenario (rendezvous metrics for plant cw, at the t_f of its first
-// IMP_START command).
-void configure_metrics(MetricsTap &mt, const sim::Scenario &scn);
+void plant_summary(const PlantSummary &p, host::Summary &s);
+// The head of every summary: scenario, mission, table, flight software, transport.
+void run_header(const sim::Scenario &scn, const std::string &fsw, const std::string &url, host::Summary &s);
 
 }  // namespace sil
 

@@ -1214,7 +1214,7 @@ unsigned ImpFsw::fire(std::uint32_t k, unsigned avail, imp_out_t &out)
 
 unsigned ImpFsw::health(const imp_in_t &in, imp_out_t &out)
 {
-    unsigned h = (mode_ << IMP_H_MODE_SHIFT) & IMP_H_MODE_MASK;
+    unsigned h = (mode_ << IMP_H_MODE_SH) & IMP_H_MODE;
     if (mode_ == IMP_MODE_INFEASIBLE) { h |= IMP_H_INFEASIBLE; }
     if (mode_ == IMP_MODE_NO_SOLUTION) { h |= IMP_H_NO_SOLUTION; }
     if (marginal_ && mode_ != IMP_MODE_IDLE) { h |= IMP_H_MARGINAL; }

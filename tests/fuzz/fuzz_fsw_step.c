@@ -16,14 +16,17 @@
  *     bit 3        raw channels: an i32 per channel replaces the value (extremes, junk)
  *     bit 4        status bytes: one per channel (STALE, SAT, and undefined bits)
  *     bit 5        mode command: u8 (values above the last mode included)
- *     bit 6        telecommand: u8 kind (START / ABORT / CLEAR / unknown), START with
+ *     bit 6        telecommand: u8 kind % 6: 0 none, 1..4 local id 0..3 in the mission's
+ *                  namespace (RENDEZVOUS: 1 START, 2 ABORT, 3 CLEAR_FAULTS; 0 and the
+ *                  observer's ids are unknown), 5 another mission's namespace; START with
  *                  u8 extra lead, u8 duration and i16 target offsets
  *     bit 7        n_counts: u8 % (FSW_IN_MAX + 2) (short frames and n_counts > FSW_IN_MAX)
  *   At most FZ_MAX_STEPS steps per input (an input's cost stays bounded).
  *
  * Checked after every step (a violation is __builtin_trap()):
  *   - out->n_act is the mission's count; the counts past it are 0;
- *   - outside the mission mode every actuator count is its safe value 0;
+ *   - the mode is BOOT, STANDBY, SAFE or the mission's own;
+ *   - outside the mission mode every actuator count is the mission's safe value;
  *   - DETUMBLE: |gimbal rate count| <= the table's bdot_max in counts + 1 (error feedback);
  *   - RENDEZVOUS: on_mask within the six thrusters and never both of an axis; a thruster is
  *     on exactly when its window is non-empty, and every window lies inside the period;
@@ -101,35 +104,38 @@ static void counters(const fsw_tlm_t *t, uint32_t *c)
 
 typedef struct {
     bool rdv;
+    uint32_t mission;
     uint32_t period_us;
     int32_t bdot_max_cnt;    /* DETUMBLE limit in counts (+1 for the error feedback) */
 } fz_lim_t;
 
 static void check_out(const fz_lim_t *lim, const fsw_out_t *o)
 {
-    uint32_t n = lim->rdv ? FSW_RDV_N_ACT : FSW_N_ACT;
-    uint32_t mission_mode = lim->rdv ? FSW_MODE_RENDEZVOUS : FSW_MODE_DETUMBLE;
+    const fsw_mis_desc_t *d = fsw_mis_desc(lim->mission);
+    uint32_t n = d->n_act;
+    uint32_t mission_mode = fsw_mis_mode(lim->mission);
     uint32_t i;
     FZ_CHECK(o->n_act == n);
     for (i = n; i < FSW_ACT_MAX; i++) {
         FZ_CHECK(o->act_cnt[i] == 0);
     }
-    FZ_CHECK(o->mode < FSW_MODE_COUNT);
+    FZ_CHECK((o->mode == FSW_MODE_BOOT) || (o->mode == FSW_MODE_STANDBY) || (o->mode == FSW_MODE_SAFE) ||
+             (o->mode == mission_mode));
     FZ_CHECK(o->mode == o->tlm.mode);
     FZ_CHECK(((o->health & 0xFFu) == 0u) || ((o->health & FSW_H_MODULE) != 0u));
     FZ_CHECK((o->mode == FSW_MODE_SAFE) == ((o->health & FSW_H_SAFE) != 0u));
     if (o->mode != mission_mode) {
         for (i = 0u; i < n; i++) {
-            FZ_CHECK(o->act_cnt[i] == 0);
+            FZ_CHECK(o->act_cnt[i] == d->safe_act[i]);
         }
     } else if (!lim->rdv) {
         for (i = 0u; i < n; i++) {
             FZ_CHECK((o->act_cnt[i] <= lim->bdot_max_cnt) && (o->act_cnt[i] >= -lim->bdot_max_cnt));
         }
     } else {
-        uint32_t mask = (uint32_t)o->act_cnt[FSW_RDV_ACT_MASK];
+        uint32_t mask = (uint32_t)o->act_cnt[IMP_ACT_MASK];
         uint32_t r;
-        FZ_CHECK(o->act_cnt[FSW_RDV_ACT_MASK] >= 0);
+        FZ_CHECK(o->act_cnt[IMP_ACT_MASK] >= 0);
         FZ_CHECK((mask & ~0x3Fu) == 0u);
         for (r = 0u; r < 3u; r++) {
             FZ_CHECK(((mask >> (2u * r)) & 3u) != 3u);
@@ -157,9 +163,10 @@ static uint64_t fold(uint64_t h, const fsw_out_t *o)
     w[FSW_ACT_MAX] = o->mode;
     w[FSW_ACT_MAX + 1u] = o->health;
     w[FSW_ACT_MAX + 2u] = o->tlm.n_chan_rej;
-    w[FSW_ACT_MAX + 3u] = o->tlm.obs_health;
-    w[FSW_ACT_MAX + 4u] = o->tlm.imp_health;
-    w[FSW_ACT_MAX + 5u] = (uint32_t)o->tlm.obs.kappa_q28;
+    w[FSW_ACT_MAX + 3u] = o->tlm.mod_health;
+    w[FSW_ACT_MAX + 4u] = o->tlm.n_tc_rej;
+    w[FSW_ACT_MAX + 5u] = (o->tlm.mission == FSW_MISSION_DETUMBLE) ? (uint32_t)o->tlm.m.detumble.kappa_q28
+                                                                     : (uint32_t)o->tlm.m.rendezvous.mode;
     for (i = 0u; i < (FSW_ACT_MAX + 6u); i++) {
         uint32_t b;
         for (b = 0u; b < 4u; b++) {
@@ -174,13 +181,13 @@ static uint64_t fold(uint64_t h, const fsw_out_t *o)
    paper's example state (5 km, 4 km, 4 km; -1 m/s each) and the sample step in channel 6. */
 static void nominal(bool rdv, int32_t *v)
 {
-    static const int32_t rdv0[FSW_RDV_N_SENS] = { 5000000, 4000000, 4000000, -100000, -100000, -100000, 0 };
+    static const int32_t rdv0[IMP_N_SENS] = { 5000000, 4000000, 4000000, -100000, -100000, -100000, 0 };
     uint32_t i;
     for (i = 0u; i < FSW_IN_MAX; i++) {
         v[i] = 0;
     }
     if (rdv) {
-        for (i = 0u; i < FSW_RDV_N_SENS; i++) {
+        for (i = 0u; i < IMP_N_SENS; i++) {
             v[i] = rdv0[i];
         }
     } else {
@@ -192,9 +199,10 @@ static void nominal(bool rdv, int32_t *v)
 #if defined(FZ_STATS)
 /* -DFZ_STATS: per input, how many steps each executive mode and impulse mode saw (how deep the
    corpus reaches). */
-#define FZ_STAT(o) do { s_st_mode[(o)->mode % FSW_MODE_COUNT]++; s_st_imp[(o)->tlm.imp.mode % 16u]++; \
+#define FZ_MODES 8u
+#define FZ_STAT(o) do { s_st_mode[(o)->mode % FZ_MODES]++; s_st_imp[(o)->tlm.m.rendezvous.mode % 16u]++; \
                         s_st_fx += (((o)->health & 0xFFu) != 0u) ? 1u : 0u; } while (0)
-static uint32_t s_st_mode[FSW_MODE_COUNT];
+static uint32_t s_st_mode[FZ_MODES];
 static uint32_t s_st_imp[16];
 static uint32_t s_st_fx;
 #else
@@ -202,6 +210,7 @@ static uint32_t s_st_fx;
 #endif
 
 static fsw_t s_f[2];   /* 25 KB each: static, so the fuzzer's stack stays small */
+static uint8_t s_boot[FSW_TABLE_CAP_BYTES];
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -213,7 +222,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_lim_t lim;
     fsw_in_t in;
     int32_t chan[FSW_IN_MAX];
-    uint32_t nsens = rdv ? FSW_RDV_N_SENS : FSW_N_SENS;
+    uint32_t nsens = rdv ? IMP_N_SENS : OBS_N_SENS;
     uint32_t k;
     uint32_t steps = 0u;
     int64_t seq = 1000;
@@ -229,21 +238,24 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.mission = rdv ? FSW_MISSION_RENDEZVOUS : FSW_MISSION_DETUMBLE;
     cfg.boot_mode = ((c0 & 8u) != 0u) ? FSW_MODE_STANDBY : (rdv ? FSW_MODE_RENDEZVOUS : FSW_MODE_DETUMBLE);
     lim.rdv = rdv;
+    lim.mission = cfg.mission;
     if (rdv) {
         const imp_params_t *p = (tsel == 1u) ? &IMP_TBL_1S : ((tsel == 2u) ? &IMP_TBL_SUB1MS : &IMP_TBL_DEFAULT);
         cfg.period_us = p->period_us;
         lim.period_us = p->period_us;
         lim.bdot_max_cnt = 0;
+        uint32_t n = imp_table_encode(p, 1u, s_boot, (uint32_t)sizeof s_boot);
         for (k = 0u; k < 2u; k++) {
-            FZ_CHECK(fsw_init_rdv(&s_f[k], &cfg, p, 1u) == FSW_OK);
+            FZ_CHECK(fsw_init(&s_f[k], &cfg, s_boot, n) == FSW_OK);
         }
     } else {
         const obs_params_t *p = (tsel == 1u) ? &OBS_TBL_50HZ_PAPER : ((tsel == 2u) ? &OBS_TBL_5HZ_PAPER : &OBS_TBL_50HZ_PHYS);
         cfg.period_us = p->period_us;
         lim.period_us = p->period_us;
         lim.bdot_max_cnt = (int32_t)(((uint32_t)p->bdot_max_q29 >> p->act_cnt_shift) + 1u);
+        uint32_t n = obs_table_encode(p, 1u, s_boot, (uint32_t)sizeof s_boot);
         for (k = 0u; k < 2u; k++) {
-            FZ_CHECK(fsw_init(&s_f[k], &cfg, p, 1u) == FSW_OK);
+            FZ_CHECK(fsw_init(&s_f[k], &cfg, s_boot, n) == FSW_OK);
         }
     }
     nominal(rdv, chan);
@@ -290,12 +302,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
         }
         if ((op & 32u) != 0u) {
-            mode_cmd = fz_u8(&r) % (FSW_MODE_COUNT + 2u);
+            mode_cmd = fz_u8(&r) % 7u;   /* every mode number in use, and beyond */
         }
         if ((op & 64u) != 0u) {
-            uint32_t kind = fz_u8(&r) % 6u;   /* 2 START, 3 ABORT, 4 CLEAR; 0, 1, 5 unknown */
-            tc = kind;
-            if (kind == FSW_TC_IMP_START) {
+            uint32_t kind = fz_u8(&r) % 6u;
+            tc = (kind == 0u) ? FSW_TC_NONE
+               : ((kind == 5u) ? FSW_TC_ID(cfg.mission + 1u, 1u) : FSW_TC_ID(cfg.mission, kind - 1u));
+            if (kind == 2u) {   /* local id 1: RENDEZVOUS START */
                 uint32_t lead = fz_u8(&r);
                 uint32_t dur = fz_u8(&r);
                 int64_t t0 = seq + 1 + (int64_t)lead;
@@ -354,7 +367,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
 #if defined(FZ_STATS)
     printf("steps %u mission %u table %u: modes", steps, rdv ? 1u : 0u, tsel);
-    for (k = 0u; k < FSW_MODE_COUNT; k++) {
+    for (k = 0u; k < FZ_MODES; k++) {
         printf(" %u", s_st_mode[k]);
         s_st_mode[k] = 0u;
     }

@@ -103,7 +103,7 @@ Out fly(const Cfg &c)
             imp_step(s.get(), &p, &in, &out);
         }
         const std::uint32_t hl = out.health;
-        const unsigned mode = (hl & IMP_H_MODE_MASK) >> IMP_H_MODE_SHIFT;
+        const unsigned mode = (hl & IMP_H_MODE) >> IMP_H_MODE_SH;
         o.health_or |= hl;
         o.fx_or |= hl & FX_ST_MASK;
         if (hl & IMP_H_INTERLOCK) { ++o.interlock_steps; }
@@ -165,7 +165,7 @@ Out fly(const Cfg &c)
     o.mv = std::sqrt(o.xf(1) * o.xf(1) + o.xf(3) * o.xf(3) + o.xf(5) * o.xf(5));
     o.dv_j = plant.dv_used();
     for (double d : o.dv_j) { o.dv += d; }
-    o.mode = (out.health & IMP_H_MODE_MASK) >> IMP_H_MODE_SHIFT;
+    o.mode = (out.health & IMP_H_MODE) >> IMP_H_MODE_SH;
     o.tlm = out.tlm;
     o.plans = out.tlm.plans;
     o.failed = out.tlm.plans_failed;

@@ -167,7 +167,7 @@ UT_TEST(init_gives_safe_outputs)
     for (j = 0u; j < IMP_NTHR; j++) {
         UT_UEQ(out.on_len_cnt[j], 0u);
     }
-    UT_UEQ((out.health & IMP_H_MODE_MASK) >> IMP_H_MODE_SHIFT, IMP_MODE_IDLE);
+    UT_UEQ((out.health & IMP_H_MODE) >> IMP_H_MODE_SH, IMP_MODE_IDLE);
 }
 
 UT_TEST(trig_kernels_are_symmetric_and_exact_at_zero)
@@ -531,7 +531,7 @@ static imp_in_t start_cmd(uint32_t k, uint32_t t0, uint32_t tf)
 
 static uint32_t mode_of(const imp_out_t *out)
 {
-    return (out->health & IMP_H_MODE_MASK) >> IMP_H_MODE_SHIFT;
+    return (out->health & IMP_H_MODE) >> IMP_H_MODE_SH;
 }
 
 /* Steps with no command from k0 to k1 (inclusive); returns the first step in `mode` (0: never). */
@@ -922,7 +922,7 @@ UT_TEST(abort_turns_everything_off)
     in.cmd = IMP_CMD_CLEAR_FAULTS;
     imp_step(&g_s, &IMP_TBL_DEFAULT, &in, &out);
     UT_UEQ(mode_of(&out), IMP_MODE_IDLE);
-    UT_UEQ(out.tlm.health_sticky & ~IMP_H_MODE_MASK, 0u);
+    UT_UEQ(out.tlm.health_sticky & ~IMP_H_MODE, 0u);
 }
 
 UT_TEST(deterministic)
