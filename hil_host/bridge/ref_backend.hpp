@@ -43,7 +43,7 @@ private:
     std::uint32_t missed_ = 0, rejected_ = 0;
 };
 
-// The rendezvous "reference FSW": the impulse scheduler in double (sim/reference ref::ImpFsw,
+// The rendezvous "reference FSW": the impulse scheduler in double (sim/impulse ref::ImpFsw,
 // same decision logic, same imp_in_t / imp_out_t) behind the same channel maps and telecommands
 // as the executive's RENDEZVOUS mission (fsw_exec.h), for spec 50 A4-4's comparison of SIL miss
 // statistics. Nav is taken as one 7-channel sample, valid only as a whole, exactly as the

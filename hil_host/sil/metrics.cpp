@@ -155,7 +155,7 @@ void MetricsTap::set_rendezvous(std::int64_t t0_step, std::int64_t tf_step)
 
 namespace {
 
-// Truth of the CW plant (sim/plant/cw_sil_plant.hpp): state[0..5] x, x', y, y', z, z';
+// Truth of the CW plant (sim/impulse/cw_sil_plant.hpp): state[0..5] x, x', y, y', z, z';
 // state[6..11] delta-v per thruster; state[12] interlock violations.
 void rdv_truth(Metrics &m, const gnc::sim_truth_t &t)
 {

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "plant/cw_sil_plant.hpp"
+#include "cw_sil_plant.hpp"
 #include "plant/sail_plant.hpp"
 
 namespace sim {

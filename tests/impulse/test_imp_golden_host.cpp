@@ -1,5 +1,5 @@
 // Golden comparison of the fixed-point switching-time solver (fsw/impulse) against the Eigen
-// double reference (sim/reference/imp_ref), spec 50-impulse §6 (G1-G4) and §7 (A4-1..A4-3).
+// double reference (sim/impulse/imp_ref), spec 50-impulse §6 (G1-G4) and §7 (A4-1..A4-3).
 // Every expected value comes from the double reference or from the spec's text, never from the
 // fixed-point code. Both sides get the same (dequantised) inputs: the reference solves the
 // problem the fixed-point code sees, so only arithmetic differs.
