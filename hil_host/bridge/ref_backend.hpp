@@ -15,7 +15,7 @@
 #include <memory>
 
 #include "backend.hpp"
-#include "imp_ref.hpp"
+#include "imp_ref_fsw.hpp"
 #include "obs_ref.hpp"
 
 extern "C" {

@@ -5,7 +5,7 @@
 // navigation sensor of §2.5.
 //
 // Standalone (no LCM, no scenario file): the SIL node wraps it. Independent of the double
-// reference (imp_ref) and of fsw/. Random numbers come from the project's generator
+// reference (imp_ref_*) and of fsw/. Random numbers come from the project's generator
 // (sim/sensors/rng.hpp), one stream per purpose, so a seed gives the same run on every platform.
 #ifndef SIM_IMPULSE_CW_PLANT_HPP
 #define SIM_IMPULSE_CW_PLANT_HPP

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "imp_ref.hpp"
 #include "cw_plant.hpp"
+#include "imp_ref_fsw.hpp"
 
 extern "C" {
 #include "imp.h"
