@@ -1,5 +1,5 @@
 // Host closed loop of the impulse scheduler against the CW plant (no LCM): the fixed-point
-// module (fsw/impulse) or the double reference FSW (sim/reference ref::ImpFsw), with the same
+// module (fsw/impulse) or the double reference FSW (sim/impulse ref::ImpFsw), with the same
 // imp_in_t / imp_out_t. Used by the A4-4 ... A4-7 tests.
 //
 // Time origin: plant time 0 is the START step (step 0); t0 = plan_lead steps later, and the
@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "imp_ref.hpp"
-#include "plant/cw_plant.hpp"
+#include "cw_plant.hpp"
+#include "imp_ref_fsw.hpp"
 
 extern "C" {
 #include "imp.h"

@@ -1,6 +1,6 @@
 // Closed-loop acceptance of the impulse scheduler against the CW plant (spec 50 §7 A4-4 ... A4-7),
 // host only: the fixed-point module, and the double reference FSW on the same seeds. No LCM (the
-// SIL node wraps the same plant); the plant, sensor and faults are those of sim/plant/cw_plant.
+// SIL node wraps the same plant); the plant, sensor and faults are those of sim/impulse/cw_plant.
 //
 //   test_imp_loop <group>     group = a44_ideal | a44_nominal_ex | a44_nominal_rand | a45 | a47
 //

@@ -13,12 +13,13 @@
 // (w can be overridden, tau_f defaults to w * 1055 s). The state is quantised to the flight
 // formats (q28 state, q29 tau_f) and both solvers get the same dequantised problem, as in
 // tests/impulse/test_imp_golden_host.cpp, so only the arithmetic differs:
-//   * reference: ref::solve (sim/reference/imp_ref, Eigen double), guards taken from the table;
+//   * reference: ref::solve (sim/impulse/imp_ref_solver, Eigen double), guards taken from the table;
 //   * flight:    imp_solve (fsw/impulse, fixed point) with the table itself.
 // Per sample it also re-runs the polarity rule alone from (0, tau_f) on both sides, even when
 // the feasibility gate stops the plan (the rule's own failure cause, spec §3.7), and evaluates the
 // fixed-point schedule in double with the closed form (the true miss).
-#include "imp_ref.hpp"
+#include "imp_ref_checks.hpp"
+#include "imp_ref_solver.hpp"
 #include "sensors/rng.hpp"
 
 #include <algorithm>

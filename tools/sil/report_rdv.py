@@ -3,7 +3,7 @@
     python -m tools.sil report LOG --out DIR       (dispatched here for a RENDEZVOUS log)
 
 Writes DIR/summary.txt, DIR/summary.json and DIR/{trajectory,cyclogram,miss}.png.
-Truth (GNC_TRUTH of the CW plant, sim/plant/cw_sil_plant.hpp) gives the terminal miss and the
+Truth (GNC_TRUTH of the CW plant, sim/impulse/cw_sil_plant.hpp) gives the terminal miss and the
 delta-v; the flight telemetry (layout fsw_tlm_formats_rdv.json) gives the plans, iterations and
 the predicted miss; GNC_CMD gives the thruster windows.
 """

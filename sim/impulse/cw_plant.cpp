@@ -1,4 +1,4 @@
-#include "plant/cw_plant.hpp"
+#include "cw_plant.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "plant/cw_sil_plant.hpp"
+#include "cw_sil_plant.hpp"
 
 #include <cmath>
 

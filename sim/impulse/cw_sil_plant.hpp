@@ -11,12 +11,12 @@
 //                            state[6..11] = delta-v delivered per thruster [m/s],
 //                            state[12] = interlock violations, state[13] = short burns;
 //                            extra = {omega [rad/s], a_nom [m/s^2], eps_c}.
-#ifndef SIM_PLANT_CW_SIL_PLANT_HPP
-#define SIM_PLANT_CW_SIL_PLANT_HPP
+#ifndef SIM_IMPULSE_CW_SIL_PLANT_HPP
+#define SIM_IMPULSE_CW_SIL_PLANT_HPP
 
 #include <memory>
 
-#include "plant/cw_plant.hpp"
+#include "cw_plant.hpp"
 #include "plant/plant.hpp"
 
 namespace sim {

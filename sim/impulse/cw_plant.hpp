@@ -4,11 +4,11 @@
 // in valve-timer counts (1 us), split exactly at every switching instant, and the relative
 // navigation sensor of §2.5.
 //
-// Standalone (no LCM, no scenario file): the SIL node wraps it. Independent of sim/reference and
-// of fsw/. Random numbers come from the project's generator (sim/sensors/rng.hpp), one stream per
-// purpose, so a seed gives the same run on every platform.
-#ifndef SIM_PLANT_CW_PLANT_HPP
-#define SIM_PLANT_CW_PLANT_HPP
+// Standalone (no LCM, no scenario file): the SIL node wraps it. Independent of the double
+// reference (imp_ref_*) and of fsw/. Random numbers come from the project's generator
+// (sim/sensors/rng.hpp), one stream per purpose, so a seed gives the same run on every platform.
+#ifndef SIM_IMPULSE_CW_PLANT_HPP
+#define SIM_IMPULSE_CW_PLANT_HPP
 
 #include <Eigen/Dense>
 #include <array>
@@ -127,4 +127,4 @@ private:
 
 }  // namespace sim
 
-#endif  // SIM_PLANT_CW_PLANT_HPP
+#endif  // SIM_IMPULSE_CW_PLANT_HPP
