@@ -2,8 +2,8 @@
  * imp_int.h — internal interface between the parts of the impulse scheduler module
  * (imp.c: contract, modes, plan job; imp_tl.c: timeline and valve windows; imp_nav.c:
  * navigation intake, prediction through the commanded burns, outlier gate, stuck-valve monitor,
- * thrust-level calibration; imp_solve.c and imp_sched.c: the solve and its rounding). Not part
- * of the module API.
+ * thrust-level calibration; imp_solve.c and imp_sched.c: the solve and its rounding; imp_cw.c:
+ * the CW kernels, valve-grid units and the response of one burn). Not part of the module API.
  */
 #ifndef FSW_IMP_INT_H
 #define FSW_IMP_INT_H
@@ -35,12 +35,19 @@ static inline uint32_t imp_sub_row0(uint32_t sub)
     return (sub == IMP_SUB_XY) ? 0u : 4u;
 }
 
-/* ------------------------------------------------------------------ imp_tl.c */
+/* ------------------------------------------------------------------ imp_cw.c */
+/* (and the CW kernels of imp.h: imp_trig, imp_psi, imp_phie, imp_phi_apply) */
 /* Grid units per step (1 with whole steps) and the grid unit in us. */
 uint32_t imp_grid(const imp_params_t *p);
 uint32_t imp_grid_us(const imp_params_t *p);
 /* Grid units -> tau q29 (n * k_gtau); n > INT32_MAX sets CONV. */
 int32_t  imp_g2tau(const imp_params_t *p, uint64_t n, fx_status_t *st);
+/* Commanded response of one burn [bs, be) of thruster j, clipped to [k1g, k2g), evaluated at teg
+   (<= the window end), per unit alpha, into s->win (r_q28[j] and on_g[j]). */
+void     imp_burn_response(imp_state_t *s, const imp_params_t *p, uint32_t j, uint64_t bs, uint64_t be, uint64_t k1g,
+                           uint64_t k2g, uint64_t teg, fx_status_t *st);
+
+/* ------------------------------------------------------------------ imp_tl.c */
 /* Modes in which the module has a mission: the nav gate and the monitor run. */
 bool     imp_active(uint32_t mode);
 /* Timeline of the solution in s->sol (rounded into s->rd) for the application epoch ta. */
@@ -50,10 +57,6 @@ bool     imp_tl_final(const imp_state_t *s, const imp_params_t *p, uint32_t ta);
 /* This step's valve windows from the timeline in force, interlock and availability last, into
    *out; records the commanded windows. Returns the health bits (INTERLOCK). */
 uint32_t imp_tl_fire(imp_state_t *s, const imp_params_t *p, uint32_t k, uint32_t avail, imp_out_t *out);
-/* Commanded response of one burn [bs, be) of thruster j, clipped to [k1g, k2g), evaluated at teg
-   (<= the window end), per unit alpha, into s->win (r_q28[j] and on_g[j]). */
-void     imp_burn_response(imp_state_t *s, const imp_params_t *p, uint32_t j, uint64_t bs, uint64_t be, uint64_t k1g,
-                           uint64_t k2g, uint64_t teg, fx_status_t *st);
 /* Commanded response of timeline tl's burns within [k1g, k2g), evaluated at teg, into s->win. */
 void     imp_tl_response(imp_state_t *s, const imp_params_t *p, const imp_timeline_t *tl, uint64_t k1g, uint64_t k2g,
                          uint64_t teg, fx_status_t *st);
