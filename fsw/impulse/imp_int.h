@@ -2,8 +2,9 @@
  * imp_int.h — internal interface between the parts of the impulse scheduler module
  * (imp.c: contract, modes, plan job; imp_tl.c: timeline and valve windows; imp_nav.c:
  * navigation intake, prediction through the commanded burns, outlier gate, stuck-valve monitor,
- * thrust-level calibration; imp_solve.c and imp_sched.c: the solve and its rounding; imp_cw.c:
- * the CW kernels, valve-grid units and the response of one burn). Not part of the module API.
+ * thrust-level calibration; imp_solve.c and imp_sched.c: the solve and its rounding; imp_log.c:
+ * log of commanded burns, calibration bookkeeping; imp_cw.c: the CW kernels, valve-grid units and
+ * the response of one burn). Not part of the module API.
  */
 #ifndef FSW_IMP_INT_H
 #define FSW_IMP_INT_H
@@ -47,6 +48,17 @@ int32_t  imp_g2tau(const imp_params_t *p, uint64_t n, fx_status_t *st);
 void     imp_burn_response(imp_state_t *s, const imp_params_t *p, uint32_t j, uint64_t bs, uint64_t be, uint64_t k1g,
                            uint64_t k2g, uint64_t teg, fx_status_t *st);
 
+/* ------------------------------------------------------------------ imp_log.c */
+/* Append a commanded window [a_g, b_g) of thruster j (extends a contiguous segment). */
+void     imp_log_add(imp_state_t *s, uint32_t j, uint64_t a_g, uint64_t b_g, uint64_t step_g);
+/* Commanded response of the logged burns within [k1g, k2g), evaluated at teg, into s->win. */
+void     imp_log_response(imp_state_t *s, const imp_params_t *p, uint64_t k1g, uint64_t k2g, uint64_t teg,
+                          fx_status_t *st);
+/* Reset the calibration to the table's thrust factors. */
+void     imp_cal_reset(imp_state_t *s, const imp_params_t *p);
+/* True when thruster j's level counts as calibrated (own window, or pooled). */
+bool     imp_cal_done(const imp_state_t *s, const imp_params_t *p, uint32_t j);
+
 /* ------------------------------------------------------------------ imp_tl.c */
 /* Modes in which the module has a mission: the nav gate and the monitor run. */
 bool     imp_active(uint32_t mode);
@@ -74,11 +86,6 @@ uint32_t imp_nav_intake(imp_state_t *s, const imp_params_t *p, const imp_in_t *i
 bool     imp_nav_fresh(const imp_state_t *s, const imp_params_t *p, uint32_t k);
 /* Clear the window accumulators. */
 void     imp_win_clear(imp_win_t *w);
-/* Commanded response of the logged burns within [k1g, k2g), evaluated at teg, into s->win. */
-void     imp_log_response(imp_state_t *s, const imp_params_t *p, uint64_t k1g, uint64_t k2g, uint64_t teg,
-                          fx_status_t *st);
-/* Append a commanded window [a_g, b_g) of thruster j (extends a contiguous segment). */
-void     imp_log_add(imp_state_t *s, uint32_t j, uint64_t a_g, uint64_t b_g, uint64_t step_g);
 /* Nav sample propagated to ta through the logged burns up to `now` and, from `now`, through
    the timeline in force when use_tl (spec 50 §5.4); result q28. */
 void     imp_propagate(imp_state_t *s, const imp_params_t *p, const imp_nav_t *nv, uint32_t now, uint32_t ta,
@@ -89,9 +96,5 @@ uint64_t imp_keep_cost(imp_state_t *s, const imp_params_t *p, uint32_t ta, fx_st
 /* Thrust-level calibration at a re-plan epoch (window from s->cal.ref to s->nav). Returns
    IMP_H_THRUST_LEVEL when the window was discarded by cal_gate. */
 uint32_t imp_cal_epoch(imp_state_t *s, const imp_params_t *p);
-/* Reset the calibration to the table's thrust factors. */
-void     imp_cal_reset(imp_state_t *s, const imp_params_t *p);
-/* True when thruster j's level counts as calibrated (own window, or pooled). */
-bool     imp_cal_done(const imp_state_t *s, const imp_params_t *p, uint32_t j);
 
 #endif /* FSW_IMP_INT_H */

@@ -2,6 +2,7 @@
 # its generated default table (python -m tools.impulse ctable).
 list(APPEND FSW_SOURCES
   impulse/imp_cw.c
+  impulse/imp_log.c
   impulse/imp_solve.c
   impulse/imp_sched.c
   impulse/imp.c
