@@ -60,8 +60,6 @@ void     imp_cal_reset(imp_state_t *s, const imp_params_t *p);
 bool     imp_cal_done(const imp_state_t *s, const imp_params_t *p, uint32_t j);
 
 /* ------------------------------------------------------------------ imp_tl.c */
-/* Modes in which the module has a mission: the nav gate and the monitor run. */
-bool     imp_active(uint32_t mode);
 /* Timeline of the solution in s->sol (rounded into s->rd) for the application epoch ta. */
 void     imp_tl_make(imp_state_t *s, const imp_params_t *p, uint32_t ta, imp_timeline_t *tl, fx_status_t *st);
 /* FINAL condition for a plan applied at ta (spec 50 §5.4). */
@@ -79,6 +77,8 @@ uint32_t imp_tl_expected_miss(imp_state_t *s, const imp_params_t *p, fx_status_t
 /* ------------------------------------------------------------------ imp_nav.c */
 /* Nav counts -> the module's sample; false when a count leaves the q28 range. */
 bool     imp_nav_convert(const imp_params_t *p, const int32_t *pos_mm, const int32_t *vel_cnt, imp_nav_t *nv);
+/* Modes in which the module has a mission: the nav gate and the monitor run. */
+bool     imp_active(uint32_t mode);
 /* A new sample: outlier gate (active modes), acceptance, monitor window. Returns IMP_EV_*. */
 uint32_t imp_nav_intake(imp_state_t *s, const imp_params_t *p, const imp_in_t *in);
 /* Accepted nav sample usable at step k: valid, not newer than k, at most nav_timeout old and

@@ -376,6 +376,12 @@ static uint32_t fd_step(imp_state_t *s, const imp_params_t *p)
     return ev;
 }
 
+bool imp_active(uint32_t mode)
+{
+    return (mode == IMP_MODE_PLANNING) || (mode == IMP_MODE_ARMED) || (mode == IMP_MODE_FIRING) ||
+           (mode == IMP_MODE_FINAL);
+}
+
 uint32_t imp_nav_intake(imp_state_t *s, const imp_params_t *p, const imp_in_t *in)
 {
     uint32_t ev = IMP_EV_NONE;

@@ -16,12 +16,6 @@ static uint32_t flagbit(bool b, uint32_t j)
     return b ? (1u << j) : 0u;
 }
 
-bool imp_active(uint32_t mode)
-{
-    return (mode == IMP_MODE_PLANNING) || (mode == IMP_MODE_ARMED) || (mode == IMP_MODE_FIRING) ||
-           (mode == IMP_MODE_FINAL);
-}
-
 void imp_tl_make(imp_state_t *s, const imp_params_t *p, uint32_t ta, imp_timeline_t *tl, fx_status_t *st)
 {
     uint32_t r;
