@@ -1,10 +1,14 @@
 /*
- * imp_int.h — internal interface between the parts of the impulse scheduler module
- * (imp.c: contract, modes, plan job; imp_tl.c: timeline and valve windows; imp_nav.c:
- * navigation intake, prediction through the commanded burns, outlier gate, stuck-valve monitor,
- * thrust-level calibration; imp_solve.c and imp_sched.c: the solve and its rounding; imp_log.c:
- * log of commanded burns, calibration bookkeeping; imp_cw.c: the CW kernels, valve-grid units and
- * the response of one burn). Not part of the module API.
+ * imp_int.h — internal interface between the parts of the impulse scheduler module. Not part of
+ * the module API. The files call downward only, top to bottom:
+ *   imp.c        contract, modes, plan job, re-plan epochs, health, telemetry
+ *   imp_nav.c    navigation intake, prediction through the commanded burns, outlier gate,
+ *                stuck-valve monitor, thrust-level calibration at an epoch
+ *   imp_tl.c     timeline and valve windows, response of a timeline, expected miss
+ *   imp_solve.c  switching-time solver (API in imp.h)
+ *   imp_sched.c  best rounding onto the valve grid (API in imp.h)
+ *   imp_log.c    log of commanded burns and its response, calibration bookkeeping
+ *   imp_cw.c     CW kernels (API in imp.h), valve-grid units, response of one burn
  */
 #ifndef FSW_IMP_INT_H
 #define FSW_IMP_INT_H
