@@ -13,8 +13,6 @@
 #include "imp_int.h"
 #include "fx_inline.h"
 
-#define Q30_ONE      INT64_C(1073741824)              /* 1.0 in q30 */
-#define Q29_HALF     INT32_C(268435456)               /* 0.5 in q29: series threshold */
 #define TWO_OVER_PI_UQ32 UINT64_C(2734261102)         /* 0.6366197724 (2/pi), uq32 */
 /* sigma/2 as BAM = sigma_q29 * 2/pi: the product of a q29 magnitude (< 2^31) and the uq32
    constant stays below 2^63, and one rounding shift of 32 gives the BAM. */
@@ -29,6 +27,8 @@
 FX_STATIC_ASSERT(imp_sa_t, (IMP_T_Q + SH_T_TO_TRIG) == IMP_TRIG_Q);
 FX_STATIC_ASSERT(imp_sa_m, (IMP_TRIG_Q - SH_TRIG_TO_M) == IMP_M_Q);
 FX_STATIC_ASSERT(imp_sa_sq, (IMP_T_Q + IMP_T_Q) == (IMP_M_Q + SH_ACC_TO_X));
+FX_STATIC_ASSERT(imp_cw_sa_one30, FX_Q_RAT_FITS(1, 1, 30));
+FX_STATIC_ASSERT(imp_cw_sa_half29, FX_Q_RAT_FITS(1, 2, 29));
 
 /* ------------------------------------------------------------------ kernels */
 
@@ -37,10 +37,10 @@ FX_STATIC_ASSERT(imp_sa_sq, (IMP_T_Q + IMP_T_Q) == (IMP_M_Q + SH_ACC_TO_X));
 static int64_t tms_series(int64_t m_q30, fx_status_t *st)
 {
     int64_t u = fx_shr_rnd64_i(m_q30 * m_q30, 30u, st);                         /* sigma^2 */
-    int64_t a = Q30_ONE - fx_shr_rnd64_i(u * K_INV72_Q32, 32u, st);
+    int64_t a = (int64_t)FX_Q_INT(1, 30) - fx_shr_rnd64_i(u * K_INV72_Q32, 32u, st);
     int64_t cube;
-    a = Q30_ONE - fx_shr_rnd64_i(fx_shr_rnd64_i(u * a, 30u, st) * K_INV42_Q32, 32u, st);
-    a = Q30_ONE - fx_shr_rnd64_i(fx_shr_rnd64_i(u * a, 30u, st) * K_INV20_Q32, 32u, st);
+    a = (int64_t)FX_Q_INT(1, 30) - fx_shr_rnd64_i(fx_shr_rnd64_i(u * a, 30u, st) * K_INV42_Q32, 32u, st);
+    a = (int64_t)FX_Q_INT(1, 30) - fx_shr_rnd64_i(fx_shr_rnd64_i(u * a, 30u, st) * K_INV20_Q32, 32u, st);
     cube = fx_shr_rnd64_i(m_q30 * u, 30u, st);
     return fx_shr_rnd64_i(fx_shr_rnd64_i(cube * K_INV6_Q32, 32u, st) * a, 30u, st);
 }
@@ -58,8 +58,8 @@ void imp_trig(int32_t sig_q29, imp_trig_t *t, fx_status_t *st)
     /* sin = 2 sh ch, 1 - cos = 2 sh^2 (q60 products, one rounding to q30), cos = 1 - (1 - cos). */
     t->s_q30 = fx_rshift_sat_i((int64_t)sh_q30 * (int64_t)ch_q30, 29u, st);
     t->omc_q30 = fx_rshift_sat_i((int64_t)sh_q30 * (int64_t)sh_q30, 29u, st);
-    t->c_q30 = fx_sat32_i(Q30_ONE - (int64_t)t->omc_q30, st);
-    if (m < (uint32_t)Q29_HALF) {
+    t->c_q30 = fx_sat32_i((int64_t)FX_Q_INT(1, 30) - (int64_t)t->omc_q30, st);
+    if (m < (uint32_t)FX_Q_RAT(1, 2, 29)) {
         tms = tms_series((int64_t)m * 2, st);
         if (sig_q29 < 0) {
             tms = -tms;
@@ -110,7 +110,7 @@ void imp_phie(uint32_t axis, int32_t sig_q29, const imp_trig_t *t, int32_t *col_
     int64_t c = (int64_t)t->c_q30;
     if (axis == 0u) {
         col_q28[0] = m28(sg - (4 * tms), st);       /* 4 s - 3 sigma */
-        col_q28[1] = m28(Q30_ONE - (4 * omc), st);  /* 4 c - 3 */
+        col_q28[1] = m28((int64_t)FX_Q_INT(1, 30) - (4 * omc), st);  /* 4 c - 3 */
         col_q28[2] = m28(-2 * omc, st);
         col_q28[3] = m28(-2 * s, st);
     } else if (axis == 1u) {
@@ -150,18 +150,18 @@ void imp_phi_apply(int32_t sig_q29, const imp_trig_t *t, const int32_t *x_q28, i
     int64_t s = (int64_t)t->s_q30;
     int64_t c = (int64_t)t->c_q30;
     int64_t row[4];
-    row[0] = e28(Q30_ONE, st);
+    row[0] = e28((int64_t)FX_Q_INT(1, 30), st);
     row[1] = e28(sg - (4 * tms), st);
     row[2] = e28(6 * tms, st);
     row[3] = e28(2 * omc, st);
     y_q56[0] = row_dot(row, x_q28, 4u, st);
     row[0] = 0;
-    row[1] = e28(Q30_ONE - (4 * omc), st);
+    row[1] = e28((int64_t)FX_Q_INT(1, 30) - (4 * omc), st);
     row[2] = e28(6 * omc, st);            /* reaches 8.5 at sigma = 2: beyond q28 as int32 */
     row[3] = e28(2 * s, st);
     y_q56[1] = row_dot(row, x_q28, 4u, st);
     row[1] = e28(-2 * omc, st);
-    row[2] = e28(Q30_ONE + (3 * omc), st);
+    row[2] = e28((int64_t)FX_Q_INT(1, 30) + (3 * omc), st);
     row[3] = e28(s, st);
     y_q56[2] = row_dot(row, x_q28, 4u, st);
     row[1] = e28(-2 * s, st);

@@ -28,7 +28,6 @@
  */
 #include "imp_int.h"
 
-#define Q30_ONE       INT32_C(1073741824)   /* 1.0 in q30 */
 #define SH_Q56_Q36    20u                   /* dot products q56 -> q36 (monitor) */
 #define SH_Q56_Q24    32u                   /* |g|^2 q56 -> q24 (calibration weight) */
 #define SH_ACC_TO_X   30u                   /* q58 -> q28 */
@@ -37,6 +36,7 @@
 #define CAL_PIVOT_MIN INT32_C(65536)        /* 2^16: 2^-12 of the largest diagonal */
 #define CAL_SH_MAX    48u                   /* bound of the block-scale search */
 #define CAL_Q         28u                   /* nominal format handed to fx_solve (relative) */
+FX_STATIC_ASSERT(imp_nav_sa_one30, FX_Q_RAT_FITS(1, 1, 30));
 
 /* Position and velocity rows of axis i in the full state. */
 static uint32_t prow(uint32_t i)
@@ -532,7 +532,7 @@ uint32_t imp_cal_epoch(imp_state_t *s, const imp_params_t *p)
         fx_solve(&s->cal.sws, s->cal.a_q, CAL_Q, s->cal.b_q, CAL_Q, n, s->cal.x_q30, IMP_ALPHA_Q, CAL_PIVOT_MIN, &st);
         for (u = 0u; u < n; u++) {
             ah[u] = fx_add_sat(s->cal.alpha_q30[unk[u]], s->cal.x_q30[u], &st);
-            out = out || (fx_uabs(fx_sub_sat(ah[u], Q30_ONE, &st)) > (uint32_t)p->cal_gate_q30);
+            out = out || (fx_uabs(fx_sub_sat(ah[u], FX_Q_INT(1, 30), &st)) > (uint32_t)p->cal_gate_q30);
         }
         if (st != 0u) {
             /* singular or out of range: the window is not evaluable */
