@@ -12,9 +12,6 @@
  */
 #include "imp_int.h"
 
-#define Q28_ONE        INT32_C(268435456)        /* 1.0 in q28 */
-#define Q30_ONE        INT32_C(1073741824)       /* 1.0 in q30 */
-#define Q30_HALF       INT32_C(536870912)        /* 0.5 in q30 */
 #define ALPHA_MIN_Q30  INT32_C(858993459)        /* 0.8 */
 #define ALPHA_MAX_Q30  INT32_C(1288490189)       /* 1.2 */
 #define TAU_LO_Q29     INT32_C(107374182)        /* 0.2 rad */
@@ -36,6 +33,10 @@
 #define JOBK_START     1u
 #define JOBK_REPLAN    2u
 #define JOBK_STUCK     3u                        /* immediate re-plan avoiding a stuck-off thruster */
+
+FX_STATIC_ASSERT(imp_sa_one28, FX_Q_RAT_FITS(1, 1, 28));
+FX_STATIC_ASSERT(imp_sa_one30, FX_Q_RAT_FITS(1, 1, 30));
+FX_STATIC_ASSERT(imp_sa_half30, FX_Q_RAT_FITS(1, 2, 30));
 
 static bool in_range(int32_t v, int32_t lo, int32_t hi)
 {
@@ -126,7 +127,7 @@ static uint32_t check_timing(const imp_params_t *p)
     if ((p->replan_period != 0u) && ((p->replan_period <= p->plan_lead) || (p->nav_timeout > p->replan_period))) {
         w |= IMP_WHY_ITER;
     }
-    if (!in_range(p->replan_gain_q30, 0, Q30_ONE - 1)) {
+    if (!in_range(p->replan_gain_q30, 0, FX_Q_INT(1, 30) - 1)) {
         w |= IMP_WHY_ITER;
     }
     if ((p->max_iter == 0u) || (p->max_iter > IMP_ITER_CAP) || (pips < IMP_ROUND_UNITS)) {
@@ -152,7 +153,7 @@ static uint32_t check_solver(const imp_params_t *p)
     if ((p->r_tol_lsb < 1) || (p->pivot_min_q26 < 1) || (p->pivot_ratio_sh > 30u) || (p->dv_tie_q28 < 0)) {
         w |= IMP_WHY_TOL;
     }
-    if ((p->rho_warn_q28 <= 0) || (p->rho_warn_q28 > p->rho_reject_q28) || (p->rho_reject_q28 > Q28_ONE)) {
+    if ((p->rho_warn_q28 <= 0) || (p->rho_warn_q28 > p->rho_reject_q28) || (p->rho_reject_q28 > FX_Q_INT(1, 28))) {
         w |= IMP_WHY_RHO;
     }
     for (i = 0u; i < IMP_NTHR; i++) {
@@ -229,13 +230,13 @@ static uint32_t check_grid(const imp_params_t *p)
 static uint32_t check_cal_fd_nav(const imp_params_t *p)
 {
     uint32_t w = 0u;
-    if ((p->cal_enable > 1u) || (p->cal_pool > 1u) || (!in_range(p->dv_cal_min_q28, 0, Q28_ONE)) ||
-        (!in_range(p->cal_gate_q30, 1, Q30_HALF)) || (!in_range(p->u_uncal_q30, 0, Q30_HALF)) ||
+    if ((p->cal_enable > 1u) || (p->cal_pool > 1u) || (!in_range(p->dv_cal_min_q28, 0, FX_Q_INT(1, 28))) ||
+        (!in_range(p->cal_gate_q30, 1, FX_Q_RAT(1, 2, 30))) || (!in_range(p->u_uncal_q30, 0, FX_Q_RAT(1, 2, 30))) ||
         (!in_range(p->u_cal_q30, 0, p->u_uncal_q30)) || (p->miss_flag_q28 <= 0)) {
         w |= IMP_WHY_CAL;
     }
     if ((p->fd_window == 0u) || (((uint64_t)p->fd_window * (uint64_t)p->period_us) > FD_SPAN_MAX_US) ||
-        (!in_range(p->fd_frac_q30, 1, Q30_ONE - 1)) || (p->fd_persist == 0u)) {
+        (!in_range(p->fd_frac_q30, 1, FX_Q_INT(1, 30) - 1)) || (p->fd_persist == 0u)) {
         w |= IMP_WHY_FD;
     }
     if ((p->nav_timeout == 0u) || (p->nav_gate_pos_q28 <= 0) || (p->nav_gate_vel_q28 <= 0) ||

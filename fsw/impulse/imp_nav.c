@@ -1,8 +1,8 @@
 /*
  * imp_nav.c — navigation side of the impulse scheduler (spec 50-impulse §5.4, §5.5, §8):
- * nav counts to the module's state, the log of commanded burns, the prediction of a sample
- * through the commanded burns (exact Phi / Psi in q28, alpha in force), the nav outlier gate,
- * the stuck-valve monitor and the thrust-level calibration.
+ * nav counts to the module's state, the pruning of the log of commanded burns (imp_log.c), the
+ * prediction of a sample through the commanded burns (exact Phi / Psi in q28, alpha in force),
+ * the nav outlier gate, the stuck-valve monitor and the thrust-level calibration.
  *
  * Prediction. For a window [k1, k2] (sample steps) and thruster j, R_j is the response at k2 of
  * j's commanded on-intervals inside the window per unit alpha (signed, full state):
@@ -28,7 +28,6 @@
  */
 #include "imp_int.h"
 
-#define Q30_ONE       INT32_C(1073741824)   /* 1.0 in q30 */
 #define SH_Q56_Q36    20u                   /* dot products q56 -> q36 (monitor) */
 #define SH_Q56_Q24    32u                   /* |g|^2 q56 -> q24 (calibration weight) */
 #define SH_ACC_TO_X   30u                   /* q58 -> q28 */
@@ -37,6 +36,7 @@
 #define CAL_PIVOT_MIN INT32_C(65536)        /* 2^16: 2^-12 of the largest diagonal */
 #define CAL_SH_MAX    48u                   /* bound of the block-scale search */
 #define CAL_Q         28u                   /* nominal format handed to fx_solve (relative) */
+FX_STATIC_ASSERT(imp_nav_sa_one30, FX_Q_RAT_FITS(1, 1, 30));
 
 /* Position and velocity rows of axis i in the full state. */
 static uint32_t prow(uint32_t i)
@@ -87,15 +87,6 @@ void imp_win_clear(imp_win_t *w)
     }
 }
 
-void imp_log_response(imp_state_t *s, const imp_params_t *p, uint64_t k1g, uint64_t k2g, uint64_t teg,
-                      fx_status_t *st)
-{
-    uint32_t i;
-    for (i = 0u; (i < (uint32_t)s->log.n) && (i < IMP_LOG_CAP); i++) {
-        imp_burn_response(s, p, s->log.thr[i], s->log.s_g[i], s->log.e_g[i], k1g, k2g, teg, st);
-    }
-}
-
 /* Drop the segments that no window can reach any more (before every reference sample). */
 static void log_prune(imp_state_t *s, const imp_params_t *p)
 {
@@ -118,29 +109,6 @@ static void log_prune(imp_state_t *s, const imp_params_t *p)
         }
     }
     s->log.n = (uint8_t)n;
-}
-
-void imp_log_add(imp_state_t *s, uint32_t j, uint64_t a_g, uint64_t b_g, uint64_t step_g)
-{
-    uint32_t i;
-    uint32_t last = IMP_LOG_CAP;
-    for (i = 0u; (i < (uint32_t)s->log.n) && (i < IMP_LOG_CAP); i++) {
-        if ((uint32_t)s->log.thr[i] == j) {
-            last = i;
-        }
-    }
-    if ((last < IMP_LOG_CAP) && (s->log.e_g[last] == a_g)) {
-        s->log.e_g[last] = b_g;
-    } else {
-        if ((uint32_t)s->log.n >= IMP_LOG_CAP) {
-            s->log.n = 0u;            /* overflow: the history before this step is lost */
-            s->log.lost_g = step_g;
-        }
-        s->log.s_g[s->log.n] = a_g;
-        s->log.e_g[s->log.n] = b_g;
-        s->log.thr[s->log.n] = (uint8_t)j;
-        s->log.n++;
-    }
 }
 
 /* xp = Phi(tau(dg)) x1 + sum_j alpha_j R_j (q28), R_j from s->win. */
@@ -408,6 +376,12 @@ static uint32_t fd_step(imp_state_t *s, const imp_params_t *p)
     return ev;
 }
 
+bool imp_active(uint32_t mode)
+{
+    return (mode == IMP_MODE_PLANNING) || (mode == IMP_MODE_ARMED) || (mode == IMP_MODE_FIRING) ||
+           (mode == IMP_MODE_FINAL);
+}
+
 uint32_t imp_nav_intake(imp_state_t *s, const imp_params_t *p, const imp_in_t *in)
 {
     uint32_t ev = IMP_EV_NONE;
@@ -442,33 +416,6 @@ uint32_t imp_nav_intake(imp_state_t *s, const imp_params_t *p, const imp_in_t *i
 }
 
 /* ------------------------------------------------------------------ calibration */
-
-void imp_cal_reset(imp_state_t *s, const imp_params_t *p)
-{
-    uint32_t j;
-    for (j = 0u; j < IMP_NTHR; j++) {
-        s->cal.sum_w_q24[j] = 0;
-        s->cal.sum_wa_q54[j] = 0u;
-        s->cal.n_acc[j] = 0u;
-        s->cal.alpha_q30[j] = p->alpha_q30[j];
-    }
-    s->cal.ref.valid = 0u;
-}
-
-static bool any_window(const imp_state_t *s)
-{
-    bool any = false;
-    uint32_t j;
-    for (j = 0u; j < IMP_NTHR; j++) {
-        any = any || (s->cal.n_acc[j] != 0u);
-    }
-    return any;
-}
-
-bool imp_cal_done(const imp_state_t *s, const imp_params_t *p, uint32_t j)
-{
-    return (p->cal_enable != 0u) && ((s->cal.n_acc[j] != 0u) || ((p->cal_pool != 0u) && any_window(s)));
-}
 
 /* alpha_j = sum w alpha_hat / sum w; without a window: the pooled mean (cal_pool) or the table. */
 static void cal_update(imp_state_t *s, const imp_params_t *p)
@@ -585,7 +532,7 @@ uint32_t imp_cal_epoch(imp_state_t *s, const imp_params_t *p)
         fx_solve(&s->cal.sws, s->cal.a_q, CAL_Q, s->cal.b_q, CAL_Q, n, s->cal.x_q30, IMP_ALPHA_Q, CAL_PIVOT_MIN, &st);
         for (u = 0u; u < n; u++) {
             ah[u] = fx_add_sat(s->cal.alpha_q30[unk[u]], s->cal.x_q30[u], &st);
-            out = out || (fx_uabs(fx_sub_sat(ah[u], Q30_ONE, &st)) > (uint32_t)p->cal_gate_q30);
+            out = out || (fx_uabs(fx_sub_sat(ah[u], FX_Q_INT(1, 30), &st)) > (uint32_t)p->cal_gate_q30);
         }
         if (st != 0u) {
             /* singular or out of range: the window is not evaluable */

@@ -16,37 +16,6 @@ static uint32_t flagbit(bool b, uint32_t j)
     return b ? (1u << j) : 0u;
 }
 
-uint32_t imp_grid(const imp_params_t *p)
-{
-    uint32_t g = 1u;
-    if ((p->subtick_us != 0u) && (p->subtick_us <= p->period_us)) {
-        g = p->period_us / p->subtick_us;
-    }
-    return g;
-}
-
-uint32_t imp_grid_us(const imp_params_t *p)
-{
-    return (p->subtick_us != 0u) ? p->subtick_us : p->period_us;
-}
-
-int32_t imp_g2tau(const imp_params_t *p, uint64_t n, fx_status_t *st)
-{
-    int32_t t = INT32_MAX;
-    if (n > (uint64_t)INT32_MAX) {
-        *st |= FX_ST_CONV;
-    } else {
-        t = fx_rshift_sat((int64_t)n * (int64_t)p->k_gtau_m, p->k_gtau_sh, st);
-    }
-    return t;
-}
-
-bool imp_active(uint32_t mode)
-{
-    return (mode == IMP_MODE_PLANNING) || (mode == IMP_MODE_ARMED) || (mode == IMP_MODE_FIRING) ||
-           (mode == IMP_MODE_FINAL);
-}
-
 void imp_tl_make(imp_state_t *s, const imp_params_t *p, uint32_t ta, imp_timeline_t *tl, fx_status_t *st)
 {
     uint32_t r;
@@ -143,36 +112,6 @@ uint32_t imp_tl_fire(imp_state_t *s, const imp_params_t *p, uint32_t k, uint32_t
     return h;
 }
 
-void imp_burn_response(imp_state_t *s, const imp_params_t *p, uint32_t j, uint64_t bs, uint64_t be, uint64_t k1g,
-                          uint64_t k2g, uint64_t teg, fx_status_t *st)
-{
-    uint64_t a = (bs > k1g) ? bs : k1g;
-    uint64_t b = (be < k2g) ? be : k2g;
-    if ((a < b) && (b <= teg)) {
-        imp_trig_t t;
-        int32_t va[4] = {0, 0, 0, 0};
-        int32_t vb[4] = {0, 0, 0, 0};
-        uint32_t r = j / 2u;
-        uint32_t row0 = 0u;                   /* first state row of the axis's subsystem ... */
-        uint32_t nrow = 4u;                   /* ... and its rows */
-        if (r == 2u) {
-            row0 = 4u;
-            nrow = 2u;
-        }
-        int32_t sa = imp_g2tau(p, teg - a, st);
-        int32_t sb = imp_g2tau(p, teg - b, st);
-        uint32_t i;
-        imp_trig(sa, &t, st);
-        imp_psi(r, sa, &t, va, st);
-        imp_trig(sb, &t, st);
-        imp_psi(r, sb, &t, vb, st);
-        for (i = 0u; i < nrow; i++) {
-            int64_t d = (int64_t)va[i] - (int64_t)vb[i];
-            s->win.r_q28[j][row0 + i] += ((j & 1u) != 0u) ? -d : d;
-        }
-        s->win.on_g[j] += b - a;
-    }
-}
 
 void imp_tl_response(imp_state_t *s, const imp_params_t *p, const imp_timeline_t *tl, uint64_t k1g, uint64_t k2g,
                      uint64_t teg, fx_status_t *st)

@@ -2,6 +2,8 @@
 # generated default tables (python -m tools.impulse ctable), and the RENDEZVOUS mission: table
 # codec, adapter, telemetry block (generated from imp_iface.py).
 list(APPEND FSW_SOURCES
+  impulse/imp_cw.c
+  impulse/imp_log.c
   impulse/imp_solve.c
   impulse/imp_sched.c
   impulse/imp.c

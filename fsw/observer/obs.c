@@ -14,9 +14,9 @@
  */
 #include "obs.h"
 
-#define Q28_ONE  INT32_C(268435456)     /* 1.0 in q28 */
 #define MIN_MATRIX_Q 16u                /* spec 10-observer §4.5: never fewer fraction bits */
 #define Q_LSB4   4                      /* smallest scaled process noise, LSB of q30 */
+FX_STATIC_ASSERT(obs_sa_one28, FX_Q_RAT_FITS(1, 1, 28));
 
 /* ------------------------------------------------------------------ small helpers */
 
@@ -95,7 +95,7 @@ static void build_f(obs_state_t *s, const obs_params_t *p, const int32_t *u_q29,
                                                      OBS_X_Q, qfmt((int32_t)OBS_F_Q + m), st);
     }
     for (j = 0u; j < OBS_NZ; j++) {
-        s->f_q28[(OBS_NX * OBS_NZ) + j] = (j == OBS_NX) ? Q28_ONE : 0;
+        s->f_q28[(OBS_NX * OBS_NZ) + j] = (j == OBS_NX) ? FX_Q_INT(1, 28) : 0;
     }
 }
 
