@@ -55,13 +55,15 @@ endfunction()
 
 if(NOT CMAKE_CROSSCOMPILING)
   if(NOT FSW_SANITIZE)
+    # --gen: the mission dispatch generated into the build tree is flight code too.
     fsw_lint_test(lint_includes ${FSW_PYTHON} ${FSW_LINT_DIR}/check_includes.py
-                  --fsw ${CMAKE_SOURCE_DIR}/fsw)
+                  --fsw ${CMAKE_SOURCE_DIR}/fsw --gen ${FSW_GEN_DIR})
     fsw_lint_test(lint_float_scan ${FSW_PYTHON} ${FSW_LINT_DIR}/scan_float.py
-                  --fsw ${CMAKE_SOURCE_DIR}/fsw -p ${CMAKE_BINARY_DIR} --cc ${CMAKE_C_COMPILER})
-    fsw_lint_test(lint_cppcheck_misra bash ${FSW_LINT_DIR}/run_cppcheck.sh --src ${CMAKE_SOURCE_DIR})
+                  --fsw ${CMAKE_SOURCE_DIR}/fsw --gen ${FSW_GEN_DIR} -p ${CMAKE_BINARY_DIR} --cc ${CMAKE_C_COMPILER})
+    fsw_lint_test(lint_cppcheck_misra bash ${FSW_LINT_DIR}/run_cppcheck.sh --src ${CMAKE_SOURCE_DIR}
+                  --gen ${FSW_GEN_DIR})
     fsw_lint_test(lint_clang_tidy bash ${FSW_LINT_DIR}/run_clang_tidy.sh ${CMAKE_BINARY_DIR}
-                  --src ${CMAKE_SOURCE_DIR})
+                  --src ${CMAKE_SOURCE_DIR} --gen ${FSW_GEN_DIR})
     # The host no-float proof is just this flag; fail if anyone drops it (or turns
     # FSW_GENERAL_REGS_ONLY off) outside the sanitizer build.
     fsw_lint_test(lint_general_regs_only_flag ${FSW_PYTHON} ${FSW_LINT_DIR}/check_compile_flags.py
@@ -77,7 +79,7 @@ else()
                 -p ${CMAKE_BINARY_DIR} --under ${CMAKE_SOURCE_DIR}/fsw ${_flags}
                 --why "spec 00 §4 'freestanding only' / 'no float: M4 hard-float'")
   fsw_lint_test(lint_float_scan ${FSW_PYTHON} ${FSW_LINT_DIR}/scan_float.py
-                --fsw ${CMAKE_SOURCE_DIR}/fsw -p ${CMAKE_BINARY_DIR} --cc ${CMAKE_C_COMPILER})
+                --fsw ${CMAKE_SOURCE_DIR}/fsw --gen ${FSW_GEN_DIR} -p ${CMAKE_BINARY_DIR} --cc ${CMAKE_C_COMPILER})
 
   # fsw/target objects, should any ever be archived into libfsw.a, are exempt from the
   # no-mutable-globals check (the BSP owns the hardware state).

@@ -126,10 +126,10 @@ fsw_rc_t fsw_table_upload(fsw_t *f, const fsw_table_chunk_t *c, uint32_t *why)
 /* The mission's channel ranges under the active table; without one nothing is accepted. */
 static void ranges(const fsw_t *f, uint32_t n, fsw_range_t *r)
 {
-    uint32_t i;
     if (f->have_p) {
         fsw_mis_ranges(f->cfg.mission, &f->m, r);
     } else {
+        uint32_t i;
         for (i = 0u; i < n; i++) {
             r[i].min = 1;
             r[i].max = -1;
@@ -193,9 +193,30 @@ static uint32_t tables_at_boundary(fsw_t *f)
     return hx;
 }
 
-/* Steps 2-3: channel i is accepted when the frame carries it, its STALE bit is clear and its count
-   lies in the mission's range; otherwise the last good value is held and the channel is invalid.
-   A FSW_MIS_SAMPLE mission's channels are valid only together and a refused sample counts once. */
+/* Steps 2-3, validity: channel i is accepted when the frame carries it, its STALE bit is clear
+   and its count lies in the mission's range. A FSW_MIS_SAMPLE mission's channels are valid only
+   together. Returns the mask of accepted channels. */
+static uint32_t valid_mask(fsw_t *f, const fsw_mis_desc_t *d, const fsw_in_t *in, uint32_t all)
+{
+    uint32_t i;
+    uint32_t valid = 0u;
+    ranges(f, d->n_sens, f->rng);
+    for (i = 0u; i < d->n_sens; i++) {
+        int32_t c = in->counts[i];
+        bool ok = (i < in->n_counts) && ((in->status[i] & FSW_ST_STALE) == 0u);
+        if (ok && (c >= f->rng[i].min) && (c <= f->rng[i].max)) {
+            valid |= (uint32_t)1u << i;
+        }
+    }
+    if (((d->flags & FSW_MIS_SAMPLE) != 0u) && (valid != all)) {
+        valid = 0u;
+    }
+    return valid;
+}
+
+/* Steps 2-3, bookkeeping: an accepted channel updates its last good value, an invalid one keeps
+   it and is counted (a FSW_MIS_SAMPLE mission's refused sample counts once); persistence for
+   stale_max steps raises the SAFE triggers the mission declares. */
 static void accept_inputs(fsw_t *f, const fsw_mis_desc_t *d, const fsw_in_t *in, uint32_t *hx)
 {
     uint32_t i;
@@ -203,22 +224,11 @@ static void accept_inputs(fsw_t *f, const fsw_mis_desc_t *d, const fsw_in_t *in,
     uint32_t all = (n >= 32u) ? 0xFFFFFFFFu : (((uint32_t)1u << n) - 1u);
     bool sample = (d->flags & FSW_MIS_SAMPLE) != 0u;
     fsw_acc_t *acc = &f->acc;
-    ranges(f, n, f->rng);
     acc->seq = in->seq;
-    acc->valid = 0u;
+    acc->valid = valid_mask(f, d, in, all);
     acc->sat = 0u;
     if (in->n_counts < n) {
         fx_cnt_inc(&f->tlm.n_in_bad);
-    }
-    for (i = 0u; i < n; i++) {
-        int32_t c = in->counts[i];
-        if ((i < in->n_counts) && ((in->status[i] & FSW_ST_STALE) == 0u) && (c >= f->rng[i].min) &&
-            (c <= f->rng[i].max)) {
-            acc->valid |= (uint32_t)1u << i;
-        }
-    }
-    if (sample && (acc->valid != all)) {
-        acc->valid = 0u;
     }
     for (i = 0u; i < n; i++) {
         uint32_t bit = (uint32_t)1u << i;

@@ -103,8 +103,8 @@ void imp_mis_ranges(const imp_mis_t *b, fsw_range_t *r)
         r[IMP_NAX + i].min = -IMP_NAV_VEL_MAX_CNT;
         r[IMP_NAX + i].max = IMP_NAV_VEL_MAX_CNT;
     }
-    r[2u * IMP_NAX].min = 0;
-    r[2u * IMP_NAX].max = INT32_MAX;
+    r[IMP_CH_NAV_STEP].min = 0;
+    r[IMP_CH_NAV_STEP].max = INT32_MAX;
 }
 
 void imp_mis_enter(imp_mis_t *b)
@@ -132,7 +132,7 @@ uint32_t imp_mis_step(imp_mis_t *b, const fsw_acc_t *acc, int32_t *act)
         ii->cmd_tgt_pos_mm[i] = acc->tc_arg[2u + i];
         ii->cmd_tgt_vel_cnt[i] = acc->tc_arg[5u + i];
     }
-    ii->nav_step = ok ? (uint32_t)acc->cnt[2u * IMP_NAX] : 0u;
+    ii->nav_step = ok ? (uint32_t)acc->cnt[IMP_CH_NAV_STEP] : 0u;
     ii->avail_mask = (uint8_t)IMP_THR_ALL;
     /* acc->tc is a local id 1..IMP_CMD_MAX (the executive checked it) or IMP_CMD_NONE. */
     ii->cmd = (uint8_t)(acc->tc & 0xFFu);
@@ -141,8 +141,10 @@ uint32_t imp_mis_step(imp_mis_t *b, const fsw_acc_t *acc, int32_t *act)
     imp_step(&b->s, &b->p, ii, &b->o);
     for (j = 0u; j < IMP_NTHR; j++) {
         /* within one period (imp_step's invariant), so the int32 conversion is exact */
-        act[j] = (int32_t)(b->o.on_start_cnt[j] & 0x7FFFFFFFu);
-        act[IMP_NTHR + j] = (int32_t)(b->o.on_len_cnt[j] & 0x7FFFFFFFu);
+        uint32_t s0 = b->o.on_start_cnt[j] & 0x7FFFFFFFu;
+        uint32_t l0 = b->o.on_len_cnt[j] & 0x7FFFFFFFu;
+        act[j] = (int32_t)s0;
+        act[IMP_NTHR + j] = (int32_t)l0;
     }
     act[IMP_ACT_MASK] = (int32_t)b->o.on_mask;
     return b->o.health;

@@ -20,6 +20,7 @@
 
 #define IMP_TBL_PAYLOAD 176u   /* bytes; imp_table.c documents the layout */
 #define IMP_ACT_MASK    12u    /* index of on_mask in the actuator counts */
+#define IMP_CH_NAV_STEP 6u     /* index of the nav sample's step index in the sensor counts */
 
 /* Nav counts accepted: +-200 km (1 mm) and +-250 m/s (10 um/s), inside the scheduler's q28 state
    range (+-8 length units = +-250 km, +-283 m/s at 400 km). */

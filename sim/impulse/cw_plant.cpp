@@ -1,4 +1,4 @@
-#include "cw_plant.hpp"
+#include "impulse/cw_plant.hpp"
 
 #include <algorithm>
 #include <cmath>

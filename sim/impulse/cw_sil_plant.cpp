@@ -1,4 +1,6 @@
-#include "cw_sil_plant.hpp"
+#include "impulse/cw_sil_plant.hpp"
+
+#include "impulse/impulse_section.hpp"
 
 #include <cmath>
 
@@ -6,7 +8,7 @@ namespace sim {
 
 CwConfig cw_config(const Scenario &scn)
 {
-    const CwSetup &c = scn.cw;
+    const CwSetup &c = scn.mission_part<CwScenario>().cw;
     CwConfig k;
     k.w = c.omega_radps;
     k.a_nom = c.a_nom_mps2;
@@ -39,16 +41,18 @@ CwConfig cw_config(const Scenario &scn)
 
 CwSilPlant::CwSilPlant(const Scenario &scn) { reset(scn); }
 
+const CwSetup &CwSilPlant::setup() const { return scn_.mission_part<CwScenario>().cw; }
+
 void CwSilPlant::reset(const Scenario &scn)
 {
     scn_ = scn;
     CwPlant::Vec6 x0;
     for (int i = 0; i < 6; ++i) {
-        x0(i) = scn.cw.x0[static_cast<std::size_t>(i)];
+        x0(i) = setup().x0[static_cast<std::size_t>(i)];
     }
     // x0 is given at x0_epoch_s (e.g. the plan epoch t0 of the paper's example); the plant starts
     // at time 0 from the free-drift state that reaches it (no thrust is commanded before t0).
-    x0 = CwPlant::phi(-scn.cw.x0_epoch_s, scn.cw.omega_radps) * x0;
+    x0 = CwPlant::phi(-setup().x0_epoch_s, setup().omega_radps) * x0;
     cw_.reset(new CwPlant(cw_config(scn), x0));
     mask_ = 0u;
     start_.fill(0u);
@@ -149,9 +153,9 @@ void CwSilPlant::truth_message(std::array<double, 16> &state, std::array<double,
     for (std::size_t i = 0; i < t.size() && i < 16u; ++i) {
         state[i] = t[i];
     }
-    extra[0] = scn_.cw.omega_radps;
-    extra[1] = scn_.cw.a_nom_mps2;
-    extra[2] = scn_.cw.eps_c;
+    extra[0] = setup().omega_radps;
+    extra[1] = setup().a_nom_mps2;
+    extra[2] = setup().eps_c;
 }
 
 }  // namespace sim

@@ -16,7 +16,7 @@
 
 #include <memory>
 
-#include "cw_plant.hpp"
+#include "impulse/cw_plant.hpp"
 #include "plant/plant.hpp"
 
 namespace sim {
@@ -24,7 +24,9 @@ namespace sim {
 constexpr std::uint32_t kCwSensorChannels = 7u;
 constexpr std::uint32_t kCwActChannels = 13u;
 
-// Scenario (plant: cw) -> CwPlant configuration.
+struct CwSetup;
+
+// Scenario (mission: rendezvous) -> CwPlant configuration.
 CwConfig cw_config(const Scenario &scn);
 
 class CwSilPlant final : public Plant {
@@ -47,6 +49,7 @@ public:
 
 private:
     Scenario scn_;
+    const CwSetup &setup() const;   // the scenario's RENDEZVOUS plant set-up
     std::unique_ptr<CwPlant> cw_;
     std::uint8_t mask_ = 0u;                 // the command held (zero before the first one)
     std::array<std::uint32_t, 6> start_{}, len_{};

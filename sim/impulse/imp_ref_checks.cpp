@@ -1,4 +1,4 @@
-#include "imp_ref_checks.hpp"
+#include "impulse/imp_ref_checks.hpp"
 
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -7,7 +7,7 @@
 #include <functional>
 #include <vector>
 
-#include "imp_ref_detail.hpp"
+#include "impulse/imp_ref_detail.hpp"
 
 namespace ref {
 

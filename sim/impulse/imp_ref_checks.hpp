@@ -8,7 +8,7 @@
 #include <Eigen/Dense>
 #include <array>
 
-#include "imp_ref_solver.hpp"
+#include "impulse/imp_ref_solver.hpp"
 
 namespace ref {
 

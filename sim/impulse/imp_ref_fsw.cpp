@@ -1,11 +1,11 @@
-#include "imp_ref_fsw.hpp"
+#include "impulse/imp_ref_fsw.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "imp_ref_detail.hpp"
+#include "impulse/imp_ref_detail.hpp"
 
 namespace ref {
 

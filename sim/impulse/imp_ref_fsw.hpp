@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "imp_ref_solver.hpp"
+#include "impulse/imp_ref_solver.hpp"
 
 namespace ref {
 

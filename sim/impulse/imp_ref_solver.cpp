@@ -1,10 +1,10 @@
-#include "imp_ref_solver.hpp"
+#include "impulse/imp_ref_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "imp_ref_detail.hpp"
+#include "impulse/imp_ref_detail.hpp"
 
 namespace ref {
 

@@ -11,7 +11,7 @@
 #include <exception>
 #include <string>
 
-#include "plant/sail_plant.hpp"
+#include "observer/sail_plant.hpp"
 
 namespace {
 
@@ -78,12 +78,12 @@ int main(int argc, char **argv)
         return 1;
     }
     if (ode) {
-        scn.propagator = sim::Propagator::Ode;
+        scn.mission_part<sim::SailScenario>().propagator = sim::Propagator::Ode;
     }
     sim::SailPlant plant(scn);
 
     // The command goes in as counts, like the bridge's: NaN/range checked before conversion.
-    sim::GimbalActuators act(scn.gimbal);
+    sim::GimbalActuators act(scn.mission_part<sim::SailScenario>().gimbal);
     sim::ActuatorCmd cmd;
     cmd.n_ch = 2u;
     for (std::size_t i = 0; i < 2u; ++i) {
@@ -104,7 +104,7 @@ int main(int argc, char **argv)
         }
     }
     std::fprintf(out, "# scenario=%s model=%s sigma=%d k2=%.9g j_factor=%.6g period_us=%u propagator=%s\n",
-                 scn.name.c_str(), sim::sigma_name(scn.sigma), scn.sigma, scn.k2_true_per_s2, scn.j_factor,
+                 scn.name.c_str(), sim::sigma_name(scn.mission_part<sim::SailScenario>().sigma), scn.mission_part<sim::SailScenario>().sigma, scn.mission_part<sim::SailScenario>().k2_true_per_s2, scn.mission_part<sim::SailScenario>().j_factor,
                  static_cast<unsigned>(scn.period_us), ode ? "ode" : "zoh");
     std::fprintf(out, "t_s,seq");
     for (const std::string &n : plant.truth_names()) {

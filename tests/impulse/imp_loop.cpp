@@ -4,7 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "imp_ref_solver.hpp"
+#include "impulse/imp_ref_solver.hpp"
 #include "sensors/rng.hpp"
 
 namespace imploop {

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "cw_plant.hpp"
-#include "imp_ref_fsw.hpp"
+#include "impulse/cw_plant.hpp"
+#include "impulse/imp_ref_fsw.hpp"
 
 extern "C" {
 #include "imp.h"

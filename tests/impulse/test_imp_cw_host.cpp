@@ -1,7 +1,7 @@
 // CW plant (sim/impulse/cw_plant): closed forms, thrusters, minimum on-time, faults, and the
 // relative-navigation sensor (spec 50 §2, §9 frame pitfall). No LCM: the plant is driven
 // directly. The closed loops with the module are in test_imp_loop.cpp.
-#include "cw_plant.hpp"
+#include "impulse/cw_plant.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -24,8 +24,8 @@
 //    case; quadratic convergence normally lands far below r_tol (fres ~ 3 LSB), giving ~0.1 ms.
 //    We check both the per-case derived bound and the spec's G4 0.25 ms (G3: 1 ms per iterate).
 //  True miss: the double closed form evaluated at the fixed-point times; spec: <= 1 cm, 1e-4 m/s.
-#include "imp_ref_checks.hpp"
-#include "imp_ref_solver.hpp"
+#include "impulse/imp_ref_checks.hpp"
+#include "impulse/imp_ref_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

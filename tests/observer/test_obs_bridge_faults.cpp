@@ -1,6 +1,7 @@
-// test_bridge_fault_sil.cpp — fault injector + bridge core + in-process observer (spec 00 §5.2,
-// §8). A stream of sensor frames is encoded to LCM bytes, passed through the seeded injector
-// and into the bridge, whose backend runs obs_step (OBS_TBL_50HZ_PHYS). The injector's per-packet
+// test_obs_bridge_faults.cpp — fault injector + bridge core + the DETUMBLE flight code in
+// process (spec 00 §5.2, §8). A stream of sensor frames is encoded to LCM bytes, passed through
+// the seeded injector and into the bridge, whose backend runs the executive with the observer
+// (boot table OBS_TBL_50HZ_PHYS, booted into DETUMBLE). The injector's per-packet
 // trace gives the exact counters the gate must report; the observer must keep stepping; the same
 // seed must give bit-identical delivered, command and telemetry streams.
 #include <cstring>
@@ -10,9 +11,10 @@
 #include "bridge_test_util.hpp"
 #include "fault_injector.hpp"
 #include "lcm_codec.hpp"
-#include "obs_backend.hpp"
+#include "fsw_backend.hpp"
 
 extern "C" {
+#include "fsw_exec.h"
 #include "obs_tables.h"
 }
 
@@ -49,8 +51,17 @@ Run run_pipeline(const fault::FaultConfig &cfg)
 {
     Run r;
     const std::int32_t period = static_cast<std::int32_t>(OBS_TBL_50HZ_PHYS.period_us);
-    InProcessObsBackend be;
-    Bridge br(be, InProcessObsBackend::sensor_limits());
+    fsw_cfg_t fc{};
+    fc.period_us = OBS_TBL_50HZ_PHYS.period_us;
+    fc.stale_max = 250u;
+    fc.boot_mode = FSW_MODE_DETUMBLE;
+    fc.mission = FSW_MISSION_DETUMBLE;
+    std::vector<std::uint8_t> img(FSW_TABLE_HDR_BYTES + OBS_TBL_PAYLOAD);
+    assert_int_equal(obs_table_encode(&OBS_TBL_50HZ_PHYS, 1u, img.data(), static_cast<std::uint32_t>(img.size())),
+                     img.size());
+    InProcessFswBackend be(fc, img);
+    assert_int_equal(be.boot_rc(), FSW_OK);
+    Bridge br(be, be.sensor_limits());
     fault::FaultInjector inj(cfg);
     for (std::int64_t k = 0; k < kN; ++k) {
         fault::Packet p;
@@ -82,8 +93,8 @@ Run run_pipeline(const fault::FaultConfig &cfg)
     r.trace = inj.trace();
     r.fc = inj.counters();
     r.bc = br.counters();
-    r.obs_steps = be.steps();
-    r.obs_last = be.last_out();
+    r.obs_steps = be.fsw().step;
+    r.obs_last = be.fsw().m.detumble.o;
     return r;
 }
 

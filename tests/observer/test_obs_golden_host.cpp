@@ -31,7 +31,7 @@
 //    2^(ls_k - ls_i) in column 6 of F_s; with F = F0 + dF, dP+ = dF P F0^T + F0 P dF^T, so
 //    |dP+| <= 2 max_i |df_s,i| ||P_s row 6||_1 ||F_s||inf (P_s before the step).
 //  The +1 terms are margin for the clamps' and the final rounding's half-LSB ties.
-#include "obs_ref.hpp"
+#include "observer/obs_ref.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 #include <complex>
 #include <vector>
 
-#include "plant/sail_model.hpp"
-#include "scenario/scenario.hpp"
+#include "observer/observer_section.hpp"
+#include "observer/sail_model.hpp"
 #include "sim_test.hpp"
 
 using sim::Mat6;

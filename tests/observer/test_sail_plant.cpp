@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "plant/sail_plant.hpp"
+#include "observer/sail_plant.hpp"
 #include "sim_test.hpp"
 
 using sim::Mat26;
@@ -35,9 +35,9 @@ Eigen::Matrix<double, 2, 6> gains(int sigma)
 
 sim::Scenario scenario(int sigma, double duration_s)
 {
-    sim::Scenario s = sim::default_scenario();
+    sim::Scenario s = sim::sail_default_scenario();
     s.name = "test";
-    s.sigma = sigma;
+    s.mission_part<sim::SailScenario>().sigma = sigma;
     s.duration_s = duration_s;
     return s;
 }
@@ -52,7 +52,7 @@ SIM_TEST(test_zoh_vs_ode_20s)
     for (int sigma : {+1, -1}) {
         sim::Scenario s = scenario(sigma, 20.0);
         sim::SailPlant zoh(s);
-        s.propagator = sim::Propagator::Ode;
+        s.mission_part<sim::SailScenario>().propagator = sim::Propagator::Ode;
         sim::SailPlant ode(s);
         const auto d = gains(sigma);
         Vec6 peak = Vec6::Zero();
@@ -124,7 +124,7 @@ SIM_TEST(test_final_gimbal_angles)
 SIM_TEST(test_divergence_rate)
 {
     sim::SailPlant p(scenario(+1, 60.0));
-    sim::GimbalActuators act(p.scenario().gimbal);
+    sim::GimbalActuators act(p.sail().gimbal);
     sim::ActuatorCmd cmd;
     cmd.n_ch = 2u;
     std::uint8_t st0 = 0u;
@@ -201,7 +201,7 @@ SIM_TEST(test_actuator_clip_event)
     EXPECT_NEAR(p.bdot_applied_radps()(0), 0.35, 0.0);
     EXPECT_NEAR(p.bdot_applied_radps()(1), -1000.0 / 1048576.0, 0.0);
     // Negative side, and a command exactly representable at the limit is not clipped.
-    sim::GimbalActuators act(p.scenario().gimbal);
+    sim::GimbalActuators act(p.sail().gimbal);
     std::vector<sim::TruthEvent> ev;
     const auto u = act.apply({-367002, 367001}, 5u, 100000, &ev);  // 367001.6 counts = 0.35 rad/s
     EXPECT_EQ_INT(ev.size(), 1);
@@ -253,9 +253,9 @@ SIM_TEST(test_clock_and_held_command)
 static void run_noisy(std::uint64_t seed, std::vector<std::int32_t> *cnts, std::vector<double> *truth)
 {
     sim::Scenario s = scenario(-1, 20.0);
-    s.gyro.noise_radps = 1e-5;
-    s.gyro.bias_sigma_radps = 1e-6;
-    s.gyro.seed = seed;
+    s.mission_part<sim::SailScenario>().gyro.noise_radps = 1e-5;
+    s.mission_part<sim::SailScenario>().gyro.bias_sigma_radps = 1e-6;
+    s.mission_part<sim::SailScenario>().gyro.seed = seed;
     sim::SailPlant p(s);
     sim::RunState st = sim::RunState::Running;
     while (st == sim::RunState::Running) {

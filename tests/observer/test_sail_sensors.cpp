@@ -6,8 +6,8 @@
 #include <limits>
 #include <vector>
 
-#include "plant/sail_plant.hpp"
-#include "sensors/gyro.hpp"
+#include "observer/gyro.hpp"
+#include "observer/sail_plant.hpp"
 #include "sensors/rng.hpp"
 #include "sim_test.hpp"
 
@@ -57,7 +57,7 @@ SIM_TEST(test_quantisation_and_saturation)
 // The plant samples truth at t_k: w0 = 1 deg/s = 0.0174533 rad/s = 18300.9 LSB -> 18301 counts.
 SIM_TEST(test_gyro_in_plant)
 {
-    sim::SailPlant p(sim::default_scenario());
+    sim::SailPlant p(sim::sail_default_scenario());
     const sim::SensorFrame f = p.sense();
     EXPECT_EQ_INT(f.n_ch, 2);
     EXPECT_EQ_INT(f.cnt[0], 18301);

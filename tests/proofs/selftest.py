@@ -171,6 +171,12 @@ class Copy:
         self.fsw = os.path.join(work, "fsw")
         shutil.copytree(os.path.join(args.src, "fsw"), self.fsw,
                         ignore=shutil.ignore_patterns("*.o", "*.obj", "*.ci", "*.su", "__pycache__"))
+        # The mission dispatch is generated into a build tree; the copy gets its own, inside the
+        # copied fsw/, so that every checker sees the complete flight library.
+        rc, out = run([sys.executable, "-B", "-m", "tools.iface", "build", "--missions", "all",
+                       "--out", os.path.join(self.fsw, "gen"), "--no-host"], cwd=args.src)
+        if rc != 0:
+            raise SystemExit("selftest: cannot generate the mission dispatch: %s" % out)
         self.sources = sorted(p for p in glob.glob(os.path.join(self.fsw, "**", "*.c"), recursive=True)
                               if not p.startswith(os.path.join(self.fsw, "target") + os.sep))
         hdr_dirs = {os.path.dirname(p) for p in glob.glob(os.path.join(self.fsw, "**", "*.h"), recursive=True)

@@ -36,7 +36,7 @@ def dispatch(ms):
         h.append("#define FSW_MODE_%-15s %du" % (m.name, m.mode))
     h += ["#define FSW_N_MISSIONS %du" % len(ms), "",
           "/* The flying mission's state and its telemetry block: one member per configured mission",
-          "   (MISRA C:2012 19.2 deviation D8, fsw/MISRA_DEVIATIONS.md). */",
+          "   (MISRA C:2012 19.2 deviation D9, fsw/MISRA_DEVIATIONS.md). */",
           "typedef union {"]
     h += ["    %s_mis_t %s;" % (m.prefix, m.name.lower()) for m in ms]
     h += ["} fsw_mis_u;", "", "typedef union {"]

@@ -18,8 +18,8 @@
 // Per sample it also re-runs the polarity rule alone from (0, tau_f) on both sides, even when
 // the feasibility gate stops the plan (the rule's own failure cause, spec §3.7), and evaluates the
 // fixed-point schedule in double with the closed form (the true miss).
-#include "imp_ref_checks.hpp"
-#include "imp_ref_solver.hpp"
+#include "impulse/imp_ref_checks.hpp"
+#include "impulse/imp_ref_solver.hpp"
 #include "sensors/rng.hpp"
 
 #include <algorithm>

@@ -40,17 +40,18 @@ def source_files(fsw):
                 yield os.path.join(d, f)
 
 
-def resolve_quoted(name, including_file, fsw, fsw_dirs):
-    """Path of a quoted include inside fsw/, or None. Search order: the including file's
-    directory, then every directory of fsw/ (a superset of the build's -I list)."""
+def resolve_quoted(name, including_file, roots, fsw_dirs):
+    """Path of a quoted include inside fsw/ (or the generated flight code), or None. Search order:
+    the including file's directory, then every directory of fsw/ (a superset of the build's -I
+    list)."""
     for d in [os.path.dirname(including_file)] + fsw_dirs:
         cand = os.path.normpath(os.path.join(d, name))
-        if os.path.isfile(cand) and inside(cand, fsw):
+        if os.path.isfile(cand) and any(inside(cand, r) for r in roots):
             return cand
     return None
 
 
-def check_file(path, fsw, fsw_dirs, display):
+def check_file(path, fsw, roots, fsw_dirs, display):
     findings = []
     try:
         with open(path, encoding="utf-8", errors="replace") as fh:
@@ -81,7 +82,7 @@ def check_file(path, fsw, fsw_dirs, display):
         m = _HDR_QUOTE.match(rest)
         if m:
             hdr = m.group(1)
-            if resolve_quoted(hdr, path, fsw, fsw_dirs) is None:
+            if resolve_quoted(hdr, path, roots, fsw_dirs) is None:
                 findings.append(
                     '%s: quoted include "%s" does not resolve to a file inside fsw/ '
                     "(the compiler would fall back to the system search path)" % (where, hdr))
@@ -95,24 +96,31 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--fsw", default=os.path.join(repo_root(), "fsw"),
                     help="flight source tree to check (default: <repo>/fsw)")
+    ap.add_argument("--gen", action="append", default=[],
+                    help="a directory of generated flight code (the mission dispatch in the build "
+                         "tree): its C files are checked as flight code too")
     args = ap.parse_args()
     fsw = os.path.abspath(args.fsw)
+    gens = [os.path.abspath(g) for g in args.gen]
+    roots = [fsw] + gens
     if not os.path.isdir(fsw):
         print("check_includes: ERROR: %s is not a directory" % fsw, file=sys.stderr)
         return 2
     base = os.path.dirname(fsw)
 
     def display(p):
-        return os.path.relpath(p, base)
+        return os.path.relpath(p, base) if inside(p, base) else p
 
-    fsw_dirs = sorted({os.path.dirname(p) for p in source_files(fsw)} | {fsw})
     files = list(source_files(fsw))
+    for g in gens:
+        files += list(source_files(g))
+    fsw_dirs = sorted({os.path.dirname(p) for p in files} | {fsw})
     if not files:
         print("check_includes: ERROR: no C sources under %s" % fsw, file=sys.stderr)
         return 2
     findings = []
     for f in files:
-        findings.extend(check_file(f, fsw, fsw_dirs, display))
+        findings.extend(check_file(f, fsw, roots, fsw_dirs, display))
     if findings:
         for f in findings:
             print(f)

@@ -21,11 +21,13 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd -P)
 build=""
 config=""
+gen=""
 files=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --src) root=$(cd "$2" && pwd -P) || die "bad --src $2"; shift 2 ;;
         --config) config=$2; shift 2 ;;
+        --gen) gen=$(cd "$2" 2>/dev/null && pwd -P) || die "bad --gen $2"; shift 2 ;;
         -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
         -*) die "unknown option $1" ;;
         *) if [ -z "$build" ]; then build=$1; else files+=("$1"); fi; shift ;;
@@ -48,15 +50,16 @@ command -v python3 >/dev/null 2>&1 || die "python3 not found"
 dbdir="$build/clang-tidy"
 mkdir -p "$dbdir" || die "cannot create $dbdir"
 # Filtered database + list of fsw/ sources, one per line.
-list=$(python3 - "$build/compile_commands.json" "$dbdir/compile_commands.json" "$root/fsw" <<'EOF'
+list=$(python3 - "$build/compile_commands.json" "$dbdir/compile_commands.json" "$root/fsw" "$gen" <<'EOF'
 import json, os, shlex, sys
-src, dst, fsw = sys.argv[1], sys.argv[2], os.path.realpath(sys.argv[3])
+src, dst = sys.argv[1], sys.argv[2]
+roots = [os.path.realpath(r) for r in sys.argv[3:] if r]
 DROP_PREFIX = ("-fcallgraph-info", "-Wstack-usage=")
 DROP = {"-fstack-usage", "-fno-tree-loop-distribute-patterns"}
 out, files = [], []
 for e in json.load(open(src)):
     f = os.path.realpath(os.path.join(e.get("directory", ""), e["file"]))
-    if not (f.startswith(fsw + os.sep) and f.endswith(".c")):
+    if not (any(f.startswith(r + os.sep) for r in roots) and f.endswith(".c")):
         continue
     args = e["arguments"] if "arguments" in e else shlex.split(e["command"])
     args = [a for a in args if a not in DROP and not a.startswith(DROP_PREFIX)]

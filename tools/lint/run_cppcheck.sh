@@ -22,11 +22,13 @@ die() { echo "run_cppcheck: ERROR: $*" >&2; exit 2; }
 lint=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$lint/../.." && pwd)
 builddir=""
+gens=()
 paths=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --src) root=$(cd "$2" 2>/dev/null && pwd) || die "bad --src $2"; shift 2 ;;
         --cppcheck-build-dir) builddir=$2; shift 2 ;;
+        --gen) gens+=("$(cd "$2" 2>/dev/null && pwd)") || die "bad --gen $2"; shift 2 ;;
         -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
         -*) die "unknown option $1" ;;
         *) paths+=("$1"); shift ;;
@@ -51,6 +53,11 @@ supp="$rel/misra.supp"
 
 incs=()
 while IFS= read -r d; do incs+=(-I "$d"); done < <(find fsw -name '*.h' -printf '%h\n' | sort -u)
+# Generated flight code (the mission dispatch in the build tree, --gen): checked like fsw/.
+for g in "${gens[@]}"; do
+    incs+=(-I "$g")
+    while IFS= read -r f; do paths+=("$f"); done < <(find "$g" -maxdepth 1 -name '*.c' | sort)
+done
 
 args=(--std=c99 --platform=unix32 --addon=misra --enable=warning,style,information
       --inline-suppr --error-exitcode=2 -I "$stdinc" "${incs[@]}"

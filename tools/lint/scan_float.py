@@ -79,7 +79,7 @@ def preprocess_args(args, src, cwd):
     return out + ["-E", src, "-o", "-"]
 
 
-def scan_preprocessed(text, fsw, display, findings):
+def scan_preprocessed(text, roots, display, findings):
     cur_file = None
     cur_line = 0
     for raw in text.split("\n"):
@@ -91,7 +91,7 @@ def scan_preprocessed(text, fsw, display, findings):
                 continue
             cur_line += 1            # #pragma, #ident: not code
             continue
-        if cur_file is not None and inside(cur_file, fsw):
+        if cur_file is not None and any(inside(cur_file, r) for r in roots):
             for kind, value, _ in clex.tokens(raw):
                 what = clex.float_findings(kind, value)
                 if what:
@@ -121,18 +121,25 @@ def main():
                     help="preprocessor driver for files not in compile_commands.json (default gcc)")
     ap.add_argument("-I", dest="incs", action="append", default=[], help="extra include dir")
     ap.add_argument("-D", dest="defs", action="append", default=[], help="extra macro")
+    ap.add_argument("--gen", action="append", default=[],
+                    help="a directory of generated flight code (the mission dispatch in the build "
+                         "tree): scanned as flight code too")
     args = ap.parse_args()
 
     fsw = os.path.abspath(args.fsw)
+    gens = [os.path.abspath(g) for g in args.gen]
+    roots = [fsw] + gens
     if not os.path.isdir(fsw):
         print("scan_float: ERROR: %s is not a directory" % fsw, file=sys.stderr)
         return 2
     base = os.path.dirname(fsw)
 
     def display(p):
-        return os.path.relpath(os.path.realpath(p), os.path.realpath(base))
+        return os.path.relpath(os.path.realpath(p), os.path.realpath(base)) if inside(p, base) else p
 
     sources = list(walk(fsw, (".c",)))
+    for g in gens:
+        sources += list(walk(g, (".c",)))
     if not sources:
         print("scan_float: ERROR: no .c files under %s" % fsw, file=sys.stderr)
         return 2
@@ -148,10 +155,10 @@ def main():
             return 2
         for e in db:
             f = os.path.join(e.get("directory", ""), e["file"])
-            if inside(f, fsw):
+            if any(inside(f, r) for r in roots):
                 commands[os.path.realpath(f)] = (e.get("directory") or ".", entry_args(e))
 
-    fallback_dirs = sorted({os.path.dirname(p) for p in walk(fsw, (".h",))} | {fsw})
+    fallback_dirs = sorted({os.path.dirname(p) for r in roots for p in walk(r, (".h",))} | {fsw})
     fallback = ([args.cc, "-std=c99"] + ["-I" + d for d in args.incs + fallback_dirs]
                 + ["-D" + d for d in args.defs])
 
@@ -186,9 +193,9 @@ def main():
                   % (display(src), res.returncode, " ".join(shlex.quote(c) for c in cmd)),
                   file=sys.stderr)
             return 2
-        scan_preprocessed(res.stdout, fsw, display, findings)
+        scan_preprocessed(res.stdout, roots, display, findings)
 
-    all_files = list(walk(fsw, (".c", ".h", ".inc", ".def")))
+    all_files = [f for r in roots for f in walk(r, (".c", ".h", ".inc", ".def"))]
     for f in all_files:
         scan_source(f, display, findings)
 

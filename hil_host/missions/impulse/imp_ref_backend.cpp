@@ -62,7 +62,7 @@ bool RefImpBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
         in.nav_pos_mm[r] = f.counts[r];
         in.nav_vel_cnt[r] = f.counts[IMP_NAX + r];
     }
-    in.nav_step = ok ? static_cast<std::uint32_t>(f.counts[2u * IMP_NAX]) : 0u;
+    in.nav_step = ok ? static_cast<std::uint32_t>(f.counts[IMP_CH_NAV_STEP]) : 0u;
     in.avail_mask = IMP_THR_ALL;
     in.cmd = static_cast<std::uint8_t>(tc_);
     in.cmd_t0_step = (tc_arg_[0] < 0) ? 0u : static_cast<std::uint32_t>(tc_arg_[0]);

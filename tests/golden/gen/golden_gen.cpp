@@ -32,9 +32,9 @@
 // Impulse. Problems are built as tests/impulse/test_imp_golden_host.cpp and imp_mc build them
 // (state quantised to q28, tau_f to q29, alpha and units from IMP_TBL_DEFAULT; the reference
 // solves the dequantised problem with the table's guards).
-#include "imp_ref_solver.hpp"
-#include "obs_ref.hpp"
-#include "plant/sail_plant.hpp"
+#include "impulse/imp_ref_solver.hpp"
+#include "observer/obs_ref.hpp"
+#include "observer/sail_plant.hpp"
 #include "scenario/scenario.hpp"
 #include "sensors/rng.hpp"
 
