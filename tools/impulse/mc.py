@@ -36,9 +36,9 @@ import subprocess
 import sys
 import time
 
+from tools.bench import provenance
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-from tools.bench import provenance  # noqa: E402  (after the path it needs)
 DEFAULT_EXE = os.path.join(ROOT, "build", "host", "tools", "impulse", "imp_mc")
 BOXES = ("nominal", "wide")
 MIN_N = {"nominal": 500, "wide": 200}   # spec 50 §7 A4-3
