@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Idempotent, non-interactive dependency installer (spec 00 §7).
 # Installs only what is missing; prints what it installed. Every entry point calls it.
-#   tools/bootstrap.sh            Debian packages + Python venv (.venv, git-ignored)
+#   tools/bootstrap.sh            Debian packages + Python venv (.venv, git-ignored) with the
+#                                 project's `tools` package installed editable (pyproject.toml)
 #   BOOTSTRAP_SKIP_VENV=1 ...     packages only
 set -euo pipefail
 
@@ -11,7 +12,7 @@ export DEBIAN_FRONTEND=noninteractive
 PKGS=(cmake ninja-build pkg-config gcc g++ python3 python3-venv
       libcmocka-dev libeigen3-dev liblcm-dev liblcm-bin libglib2.0-dev
       gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm
-      cppcheck clang-tidy clang-14 libclang-rt-14-dev libyaml-cpp-dev)
+      cppcheck clang-tidy clang-14 libclang-rt-14-dev libyaml-cpp-dev libcli11-dev)
 
 missing=()
 for p in "${PKGS[@]}"; do
@@ -40,13 +41,39 @@ if [ "${BOOTSTRAP_SKIP_VENV:-0}" != 1 ]; then
         python3 -m venv "$VENV"
         echo "bootstrap: created $VENV"
     fi
-    need=()
-    for m in numpy scipy matplotlib lcm; do
-        "$VENV/bin/python" -c "import $m" 2>/dev/null || need+=("$m")
-    done
-    if ((${#need[@]})); then
-        "$VENV/bin/python" -m pip install -q --disable-pip-version-check "${need[@]}"
-        echo "bootstrap: pip installed ${need[*]}"
+    # What the venv lacks: each distribution in pyproject.toml's [project] dependencies (by name;
+    # the list is unpinned), and this tree's `tools` package installed editable from $ROOT.
+    # `pip install -e` then installs the project and whichever dependencies are missing; nothing
+    # runs when the check finds nothing.
+    need=$("$VENV/bin/python" -I - "$ROOT" <<'PY'   # -I: not the cwd's *.egg-info
+import importlib.metadata as md
+import json
+import pathlib
+import re
+import sys
+import tomllib
+
+root = pathlib.Path(sys.argv[1])
+project = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+need = []
+for req in project.get("dependencies", []):
+    name = re.match(r"[A-Za-z0-9._-]+", req).group(0)
+    try:
+        md.distribution(name)
+    except md.PackageNotFoundError:
+        need.append(name)
+try:
+    url = json.loads(md.distribution(project["name"]).read_text("direct_url.json") or "{}")
+except md.PackageNotFoundError:
+    url = {}
+if url.get("url") != root.as_uri() or not url.get("dir_info", {}).get("editable"):
+    need.append(f"{project['name']} (editable, {root})")
+print(" ".join(need))
+PY
+)
+    if [ -n "$need" ]; then
+        "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e "$ROOT"
+        echo "bootstrap: pip installed $need"
     else
         echo "bootstrap: Python venv complete"
     fi

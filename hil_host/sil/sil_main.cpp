@@ -11,7 +11,7 @@
 //              the two ends as separate processes (udpm); log with lcm-logger.
 // Exit: 0 run completed (also a DIVERGED end: that is a result, in the summary), 1 error,
 // 2 usage (CLI11 names the bad option), 77 lcm_create failed (no multicast on loopback).
-#include <CLI/CLI.hpp>
+#include "fsw_cli.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -182,13 +182,15 @@ int main(int argc, char **argv)
     plant->add_option("--url", url, url_help)->required();
     plant->add_option("--summary", summary, "summary text to write");
     plant->add_option("--summary-json", summary_json, "summary JSON to write");
-    plant->add_option("--ready-timeout-ms", ready_ms, "wait this long for the bridge")->check(CLI::Range(1, 600000));
+    plant->add_option("--ready-timeout-ms", ready_ms, "wait this long for the bridge")
+        ->check(fsw_cli::Int())->check(CLI::Range(1, 600000));
     plant->add_flag("--progress", progress, "progress line on stderr");
 
     CLI::App *br = app.add_subcommand("bridge", "the bridge node (fixed-point flight code) of a separate-process run");
     br->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
     br->add_option("--url", url, url_help)->required();
-    br->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")->check(CLI::Range(1, 3600000));
+    br->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")
+        ->check(fsw_cli::Int())->check(CLI::Range(1, 3600000));
 
     CLI::App *pg = app.add_subcommand("ping", "one runner heartbeat on GNC_CTL");
     pg->add_option("--url", url, url_help)->required();
@@ -196,7 +198,8 @@ int main(int argc, char **argv)
     CLI::App *lg = app.add_subcommand("logger", "lossless event logger of a udpm run");
     lg->add_option("--url", url, url_help)->required();
     lg->add_option("--log", log, "LCM event log to write")->required();
-    lg->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")->check(CLI::Range(1, 3600000));
+    lg->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")
+        ->check(fsw_cli::Int())->check(CLI::Range(1, 3600000));
 
     try {
         app.parse(argc, argv);

@@ -2,72 +2,46 @@
 // and sensor counts as CSV. A check tool; the closed loop runs through the LCM bridge.
 //
 //   sim_openloop SCENARIO.yaml [--cmd-radps BY BZ] [--ode] [--out FILE.csv] [--every N]
+//   (command line: CLI11; --help lists the options)
 //
 // Exit status: 0 run completed, 2 DIVERGED, 1 usage or scenario error.
-#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <exception>
+#include <limits>
 #include <string>
+#include <vector>
 
+#include "fsw_cli.hpp"
 #include "observer/sail_plant.hpp"
-
-namespace {
-
-void usage()
-{
-    std::fprintf(stderr,
-                 "usage: sim_openloop SCENARIO.yaml [--cmd-radps BY BZ] [--ode] [--out FILE.csv] [--every N]\n");
-}
-
-bool parse_double(const char *s, double *out)
-{
-    char *end = nullptr;
-    errno = 0;
-    const double v = std::strtod(s, &end);
-    if (end == s || *end != '\0' || errno != 0) {
-        return false;
-    }
-    *out = v;
-    return true;
-}
-
-}  // namespace
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        usage();
-        return 1;
-    }
-    std::string scn_path = argv[1];
+    std::string scn_path;
     std::string out_path;
-    double cmd_radps[2] = {0.0, 0.0};
+    std::vector<double> cmd_radps{0.0, 0.0};
     bool ode = false;
     long every = 1;
-    for (int i = 2; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--cmd-radps" && i + 2 < argc) {
-            if (!parse_double(argv[i + 1], &cmd_radps[0]) || !parse_double(argv[i + 2], &cmd_radps[1])) {
-                usage();
-                return 1;
-            }
-            i += 2;
-        } else if (a == "--ode") {
-            ode = true;
-        } else if (a == "--out" && i + 1 < argc) {
-            out_path = argv[++i];
-        } else if (a == "--every" && i + 1 < argc) {
-            every = std::strtol(argv[++i], nullptr, 10);
-            if (every < 1) {
-                usage();
-                return 1;
-            }
-        } else {
-            usage();
-            return 1;
-        }
+    CLI::App app{"sim_openloop: run a scenario open loop (zero or constant gimbal-rate command) and write "
+                 "truth and sensor counts as CSV.\nExit 0 run completed, 2 DIVERGED, 1 usage or scenario error.",
+                 "sim_openloop"};
+    fsw_cli::last_value_wins(app);
+    app.add_option("scenario", scn_path, "scenario file (sim/scenarios/*.yaml)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    app.add_option("--cmd-radps", cmd_radps, "constant gimbal-rate command BY BZ [rad/s] (default 0 0)")
+        ->expected(2)
+        ->type_name("BY BZ")
+        ->multi_option_policy(CLI::MultiOptionPolicy::Throw)   // exactly two numbers, given once
+        ->transform(fsw_cli::Real());
+    app.add_flag("--ode", ode, "propagate with the RK4 ODE instead of the exact ZOH step");
+    app.add_option("--out", out_path, "CSV file (default: stdout)");
+    app.add_option("--every", every, "write every N-th step (the final state is always written)")
+        ->transform(fsw_cli::Int())
+        ->check(CLI::Range(1L, std::numeric_limits<long>::max()).description(">= 1"))
+        ->capture_default_str();
+    const int rc = fsw_cli::parse(app, argc, argv, 1);
+    if (rc >= 0) {
+        return rc;
     }
 
     sim::Scenario scn;

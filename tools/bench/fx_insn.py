@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Instruction counts of the fx kernels on the emulated Cortex-M (spec 00 §6.4, §9).
 
-    tools/bench/fx_insn.py [BUILD_DIR ...] [--out-dir bench] [--reps 5]
+    .venv/bin/python -m tools.bench.fx_insn [BUILD_DIR ...] [--out-dir bench] [--reps 5]
+    (or .venv/bin/python tools/bench/fx_insn.py ...: the project venv has the `tools` package)
 
 Builds nothing: it runs <BUILD_DIR>/fsw/target/fx_bench.elf (from fsw/target/bench/fx_bench.c,
 part of every cortex-m3/m4 build) under `qemu-system-arm -icount shift=3` through
@@ -37,9 +38,9 @@ import subprocess
 import sys
 import tempfile
 
+from tools.bench import provenance
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-from tools.bench import provenance  # noqa: E402  (after the path it needs)
 QEMU_RUN = os.path.join(ROOT, "tools", "qemu-run.sh")
 ELF_REL = os.path.join("fsw", "target", "fx_bench.elf")
 CALLS_PER_BRACKET = 5

@@ -10,6 +10,7 @@ changed total or revision, oversize). Plain python3, standard library only; dete
 
 Usage: mkcorpus.py OUT_DIR      (the build tree; nothing generated is committed)
 """
+import argparse
 import importlib.util
 import os
 import struct
@@ -65,11 +66,11 @@ def entry(img, ctrl=0, total=None):
     return bytes([ctrl]) + struct.pack("<H", total) + img
 
 
-def main(argv):
-    if len(argv) != 2:
-        sys.stderr.write(__doc__)
-        return 2
-    out = argv[1]
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Seed corpus for tests/fuzz/fuzz_table_loader (deterministic).")
+    ap.add_argument("out", metavar="OUT_DIR", help="corpus directory, created if missing; its *.bin are replaced "
+                                                   "(the build tree: nothing generated is committed)")
+    out = ap.parse_args(argv).out
     os.makedirs(out, exist_ok=True)
     for name in os.listdir(out):          # regenerate from scratch
         if name.endswith(".bin"):
@@ -124,4 +125,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

@@ -10,6 +10,7 @@ then nav dropouts, ABORT, CLEAR and a second START. Standard library only; deter
 
 Usage: mkcorpus_fsw_step.py OUT_DIR      (the build tree; nothing generated is committed)
 """
+import argparse
 import os
 import struct
 import sys
@@ -90,11 +91,11 @@ def seeds():
     return s
 
 
-def main(argv):
-    if len(argv) != 2:
-        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
-        return 2
-    out = argv[1]
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Seed corpus for tests/fuzz/fuzz_fsw_step (deterministic).")
+    ap.add_argument("out", metavar="OUT_DIR", help="corpus directory, created if missing "
+                                                   "(the build tree: nothing generated is committed)")
+    out = ap.parse_args(argv).out
     os.makedirs(out, exist_ok=True)
     for name, data in sorted(seeds().items()):
         with open(os.path.join(out, name), "wb") as f:
@@ -104,4 +105,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

@@ -4,7 +4,7 @@
 // into chunks, runs them in parallel, merges them and checks A4-3.
 //
 //   imp_mc --box nominal|wide --seed S --i0 A --i1 B [--omega W] [--tauf TAU] [--out FILE]
-//          [--no-header]
+//          [--no-header]          (command line: CLI11; --help lists the options; exit 2 bad usage)
 //
 // Sample (seed, box, i): sim::Rng(seed, (box_id << 32) | i) (sim/sensors/rng.hpp: xoshiro256**
 // behind splitmix64, the project's one generator), six uniform() draws u_k in state order
@@ -18,6 +18,7 @@
 // Per sample it also re-runs the polarity rule alone from (0, tau_f) on both sides, even when
 // the feasibility gate stops the plan (the rule's own failure cause, spec §3.7), and evaluates the
 // fixed-point schedule in double with the closed form (the true miss).
+#include "fsw_cli.hpp"
 #include "impulse/imp_ref_checks.hpp"
 #include "impulse/imp_ref_solver.hpp"
 #include "sensors/rng.hpp"
@@ -57,77 +58,81 @@ struct Options {
     const Box *box = nullptr;
     std::uint64_t seed = 1u;
     std::uint64_t i0 = 0u, i1 = 0u;
-    bool have_range = false;
     double omega = 0;   // 0: the table's
     double tauf = 0;    // 0: omega * 1055 s
     std::string out;
     bool header = true;
 };
 
-[[noreturn]] void usage(const char *why)
+// 0 (the default named in the help), or a value in [lo, hi]; after fsw_cli::Real(), so the text
+// is a finite number.
+CLI::Validator zero_or_range(double lo, double hi, const char *unit)
 {
-    std::fprintf(stderr,
-                 "imp_mc: %s\nusage: imp_mc --box nominal|wide --seed S --i0 A --i1 B [--omega W] [--tauf TAU] "
-                 "[--out FILE] [--no-header]\n",
-                 why);
-    std::exit(2);
+    char desc[96];
+    (void)std::snprintf(desc, sizeof desc, "0 or in [%g, %g] %s", lo, hi, unit);
+    return CLI::Validator(
+        [lo, hi, unit](std::string &s) -> std::string {
+            const double v = std::strtod(s.c_str(), nullptr);
+            if (std::fpclassify(v) == FP_ZERO || (v >= lo && v <= hi)) {
+                return std::string{};
+            }
+            char msg[128];
+            (void)std::snprintf(msg, sizeof msg, "%.17g outside [%g, %g] %s (0: the default)", v, lo, hi, unit);
+            return std::string(msg);
+        },
+        desc);
 }
 
-std::uint64_t parse_u64(const char *s)
-{
-    char *end = nullptr;
-    const unsigned long long v = std::strtoull(s, &end, 10);
-    if (end == s || *end != '\0' || s[0] == '-') { usage("bad integer"); }
-    return static_cast<std::uint64_t>(v);
-}
-
-double parse_f64(const char *s)
-{
-    char *end = nullptr;
-    const double v = std::strtod(s, &end);
-    if (end == s || *end != '\0' || !std::isfinite(v)) { usage("bad number"); }
-    return v;
-}
-
-Options parse(int argc, char **argv)
+// Returns the options, or sets *exit_status (>= 0) when the tool must stop (--help, bad usage).
+Options parse(int argc, char **argv, int *exit_status)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto val = [&]() -> const char * {
-            if (i + 1 >= argc) { usage("missing value"); }
-            return argv[++i];
-        };
-        if (a == "--box") {
-            const std::string b = val();
-            for (const Box &x : BOXES) {
-                if (b == x.name) { o.box = &x; }
-            }
-            if (o.box == nullptr) { usage("unknown box"); }
-        } else if (a == "--seed") {
-            o.seed = parse_u64(val());
-        } else if (a == "--i0") {
-            o.i0 = parse_u64(val());
-            o.have_range = true;
-        } else if (a == "--i1") {
-            o.i1 = parse_u64(val());
-            o.have_range = true;
-        } else if (a == "--omega") {
-            o.omega = parse_f64(val());
-        } else if (a == "--tauf") {
-            o.tauf = parse_f64(val());
-        } else if (a == "--out") {
-            o.out = val();
-        } else if (a == "--no-header") {
-            o.header = false;
-        } else {
-            usage("unknown option");
-        }
-    }
-    if (o.box == nullptr || !o.have_range || o.i1 < o.i0 || o.i1 > 0xFFFFFFFFull) { usage("need --box and 0 <= i0 <= i1 < 2^32"); }
+    std::string box;
+    *exit_status = -1;
+    CLI::App app{"imp_mc: Monte Carlo samples [i0, i1) of a seeded campaign of the impulse switching-time solver, "
+                 "fixed point and double reference, one CSV row per sample (tools/impulse/mc.py drives it).",
+                 "imp_mc"};
+    fsw_cli::last_value_wins(app);
+    app.add_option("--box", box, "sampling box: nominal (+-5 km, +-1 m/s) or wide (+-20 km, +-5 m/s)")
+        ->required()
+        ->check(CLI::IsMember(std::vector<std::string>{BOXES[0].name, BOXES[1].name}));
+    app.add_option("--seed", o.seed, "campaign seed")->transform(fsw_cli::UInt())->capture_default_str();
+    // At least one of --i0 / --i1 (the other defaults to 0), checked below.
+    CLI::Option *oi0 = app.add_option("--i0", o.i0, "first sample index (default 0)")
+                           ->transform(fsw_cli::UInt())
+                           ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{0xFFFFFFFFu}).description("< 2^32"));
+    CLI::Option *oi1 = app.add_option("--i1", o.i1, "end of the index range, exclusive (default 0)")
+                           ->transform(fsw_cli::UInt())
+                           ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{0xFFFFFFFFu}).description("< 2^32"));
     // spec 50 §2.3: accepted w and tau_f ranges
-    if (o.omega > 0.0 && (o.omega < 8.0e-4 || o.omega > 1.2e-3)) { usage("--omega outside [8e-4, 1.2e-3] rad/s"); }
-    if (o.tauf > 0.0 && (o.tauf < 0.2 || o.tauf > 2.0)) { usage("--tauf outside [0.2, 2.0] rad"); }
+    app.add_option("--omega", o.omega, "orbit rate w [rad/s] (0: the table's)")
+        ->transform(fsw_cli::Real())
+        ->check(zero_or_range(8.0e-4, 1.2e-3, "rad/s"));
+    app.add_option("--tauf", o.tauf, "tau_f = w T [rad] (0: w * 1055 s)")
+        ->transform(fsw_cli::Real())
+        ->check(zero_or_range(0.2, 2.0, "rad"));
+    app.add_option("--out", o.out, "CSV file (default: stdout)");
+    bool no_header = false;
+    app.add_flag("--no-header", no_header, "omit the CSV header line");
+    *exit_status = fsw_cli::parse(app, argc, argv, 2);
+    if (*exit_status >= 0) {
+        return o;
+    }
+    const char *why = nullptr;
+    if (oi0->count() == 0u && oi1->count() == 0u) {
+        why = "need --i0 and/or --i1";
+    } else if (o.i1 < o.i0) {
+        why = "need i0 <= i1";
+    }
+    if (why != nullptr) {
+        (void)app.exit(CLI::ValidationError("--i0, --i1", why));   // prints it as CLI11 prints its own
+        *exit_status = 2;
+        return o;
+    }
+    o.header = !no_header;
+    for (const Box &x : BOXES) {
+        if (box == x.name) { o.box = &x; }
+    }
     return o;
 }
 
@@ -262,7 +267,11 @@ const char *const COLUMNS =
 
 int main(int argc, char **argv)
 {
-    const Options o = parse(argc, argv);
+    int exit_status = -1;
+    const Options o = parse(argc, argv, &exit_status);
+    if (exit_status >= 0) {
+        return exit_status;
+    }
     const imp_params_t &p = IMP_TBL_DEFAULT;
     uint32_t why = 0u;
     if (imp_params_check(&p, &why) != FSW_OK) {

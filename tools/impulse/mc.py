@@ -7,7 +7,7 @@ The work is done by the host executable `imp_mc` (tools/impulse/imp_mc.cpp: refe
 and fixed-point imp_solve per sample, one CSV row each). This driver splits each box's index
 range into fixed chunks of --chunk samples (aligned to multiples of --chunk, so a longer
 campaign with the same seed reuses the chunks of a shorter one), runs them as parallel
-subprocesses (--jobs, default os.cpu_count()), prints progress, and writes
+subprocesses (--jobs, default os.cpu_count()), shows progress (tqdm, on stderr), and writes
 
     DIR/chunks/<box>_<i0>_<i1>.csv   one per chunk (written to .tmp, renamed when complete)
     DIR/campaign.json                seed, w, tau_f, chunk size, executable digest
@@ -26,19 +26,22 @@ import concurrent.futures as cf
 import csv
 import datetime
 import hashlib
+import io
 import json
 import math
 import os
 import re
 import shutil
-import statistics
 import subprocess
 import sys
 import time
 
+import numpy as np
+from tqdm import tqdm
+
+from tools.bench import provenance
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-from tools.bench import provenance  # noqa: E402  (after the path it needs)
 DEFAULT_EXE = os.path.join(ROOT, "build", "host", "tools", "impulse", "imp_mc")
 BOXES = ("nominal", "wide")
 MIN_N = {"nominal": 500, "wide": 200}   # spec 50 §7 A4-3
@@ -65,11 +68,12 @@ def sha256(path):
 
 
 def exe_header(exe):
+    """The executable's CSV header (list of column names): its output for an empty index range."""
     r = subprocess.run([exe, "--box", "nominal", "--seed", "0", "--i0", "0", "--i1", "0"],
                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, check=False)
     if r.returncode != 0:
         sys.exit(f"mc: {exe} failed: {r.stderr.strip()}")
-    return r.stdout.strip()
+    return next(csv.reader([r.stdout.strip()]))
 
 
 def chunk_ranges(n, chunk):
@@ -80,17 +84,22 @@ def chunk_path(d, box, i0, i1):
     return os.path.join(d, "chunks", f"{box}_{i0:07d}_{i1:07d}.csv")
 
 
-def chunk_complete(path, header, rows):
+def read_table(path):
+    """The records of a CSV file (header first) as lists of strings, or None when the file cannot
+    be read or is truncated (imp_mc ends every record, the header's too, with a newline)."""
     try:
-        with open(path, encoding="utf-8") as f:
-            lines = f.read().split("\n")
+        with open(path, encoding="utf-8", newline="") as f:
+            text = f.read()
     except OSError:
-        return False
-    if lines and lines[-1] == "":
-        lines.pop()
-    else:
-        return False   # no final newline: truncated
-    return len(lines) == rows + 1 and lines[0] == header
+        return None
+    if not text.endswith("\n"):
+        return None
+    return list(csv.reader(io.StringIO(text)))
+
+
+def chunk_complete(path, header, rows):
+    t = read_table(path)
+    return t is not None and len(t) == rows + 1 and t[0] == header
 
 
 def build_type_of(exe):
@@ -140,19 +149,18 @@ def run_chunks(a, exe, header, plan):
             raise RuntimeError(f"{' '.join(cmd)}: no timing line on stderr")
         return c, float(m.group(1))
 
-    with cf.ThreadPoolExecutor(max_workers=a.jobs) as ex:
+    # Progress: samples done of the campaign (resumed chunks count from the start), rate, ETA and
+    # the last chunk completed.
+    with tqdm(total=total, initial=done_n, unit="sample", desc="mc", file=sys.stderr, dynamic_ncols=True) as bar, \
+            cf.ThreadPoolExecutor(max_workers=a.jobs) as ex:
         futs = [ex.submit(one, c) for c in pending]
         try:
             for f in cf.as_completed(futs):
                 c, s = f.result()
                 proc_s += s
                 ran += c["i1"] - c["i0"]
-                done_n += c["i1"] - c["i0"]
-                el = time.monotonic() - t0
-                rate = ran / el if el > 0 else float("inf")
-                eta = (total - done_n) / rate if rate > 0 else 0.0
-                print(f"mc: {done_n}/{total} samples ({c['box']} [{c['i0']}, {c['i1']})), "
-                      f"{rate:.0f} samples/s, ETA {eta:.0f} s", flush=True)
+                bar.set_postfix_str(f"{c['box']} [{c['i0']}, {c['i1']})", refresh=False)
+                bar.update(c["i1"] - c["i0"])
         except BaseException:
             for f in futs:
                 f.cancel()
@@ -161,15 +169,16 @@ def run_chunks(a, exe, header, plan):
 
 
 def merge(a, header, plan):
+    """DIR/samples.csv: the header, then the records of every chunk in plan order (chunks are
+    complete here). Returns the records as dicts, column name -> text."""
     rows = []
-    with open(os.path.join(a.out, "samples.csv"), "w", encoding="utf-8") as fo:
-        fo.write(header + "\n")
-        for c in plan:
-            with open(c["path"], encoding="utf-8") as f:
-                lines = f.read().splitlines()[1:]
-            fo.write("\n".join(lines) + "\n")
-            rows.extend(lines)
-    return list(csv.DictReader([header] + rows))
+    for c in plan:
+        rows.extend(read_table(c["path"])[1:])
+    with open(os.path.join(a.out, "samples.csv"), "w", encoding="utf-8", newline="") as fo:
+        w = csv.writer(fo, lineterminator="\n")
+        w.writerow(header)
+        w.writerows(rows)
+    return [dict(zip(header, x)) for x in rows]
 
 
 # ------------------------------------------------------------------ figures and checks
@@ -187,11 +196,22 @@ def finite(v):
 
 
 def quantiles(v):
-    v = sorted(finite(v))
-    if not v:
+    """n, min, median, p95 and max of the non-NaN values. p95 is a sample value, the one at rank
+    round((n - 1) 0.95) ascending, ties to even (numpy's "nearest" method); the median of an even
+    count is the mean of the middle two. (The figures equal the former sorted-list code's, except
+    that with both -0.0 and 0.0 in the middle the median's sign of zero may differ; no column
+    summarised here holds a negative zero.)"""
+    v = np.asarray(finite(v), dtype=float)
+    if not v.size:
         return {"n": 0}
-    pick = lambda q: v[min(len(v) - 1, int(round(q * (len(v) - 1))))]
-    return {"n": len(v), "min": v[0], "median": statistics.median(v), "p95": pick(0.95), "max": v[-1]}
+    return {"n": int(v.size), "min": float(v.min()), "median": float(np.median(v)),
+            "p95": float(np.quantile(v, 0.95, method="nearest")), "max": float(v.max())}
+
+
+def median_count(v):
+    """Median of a list of integers: an int for an odd count, else the mean of the middle two."""
+    m = np.median(v)
+    return int(m) if len(v) % 2 else float(m)
 
 
 def histogram(v):
@@ -217,7 +237,7 @@ def summarise(box, r):
                             for h1 in ("rule", "search") for h2 in ("rule", "search")}
         its = [max(int(x[f"it_xy_{side}"]), int(x[f"it_z_{side}"])) for x in val]
         s[f"iters_{side}"] = {"max": max(its) if its else None,
-                              "median": statistics.median(its) if its else None,
+                              "median": median_count(its) if its else None,
                               "hist_max_of_subsystems": histogram(its)}
         s[f"rule_cause_{side}"] = {
             sub: {c: sum(x[f"rule_cause_{sub}_{side}"] == c for x in r) for c in CAUSES
@@ -477,7 +497,7 @@ def main(a):
             "boxes": {b: summarise(b, by_box[b]) for b in boxes}, "checks": {}}
     if bench:
         rates = [x["runs_per_s"] for x in bench]
-        summ["timing"] = {"reps": bench, "runs_per_s_median": statistics.median(rates), "runs_per_s_min": min(rates),
+        summ["timing"] = {"reps": bench, "runs_per_s_median": float(np.median(rates)), "runs_per_s_min": min(rates),
                           "note": "benchmark only (spec 00 §9), wall time of the whole parallel campaign"}
     failed = []
     for b in boxes:

@@ -18,8 +18,7 @@ import re
 import sys
 
 sys.dont_write_bytecode = True      # no __pycache__ in the source tree
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import clex  # noqa: E402
+import clex  # noqa: E402  (sibling module: a script's directory is on sys.path; see lintpaths.py)
 
 ALLOWED_SYSTEM = ("stdint.h", "stdbool.h", "stddef.h", "limits.h")
 TARGET_EXTRA_SYSTEM = ()          # system headers fsw/target alone may add (none today)

@@ -18,13 +18,11 @@ Two known defects of the cppcheck 2.10 misra addon are filtered (fsw/MISRA_DEVIA
      report is dropped only if the flagged operator sits in a parenthesised group that is, in
      the source text, a direct operand of a shift operator. Every other 10.7 report is kept.
 """
-import os
 import re
 import sys
 
 sys.dont_write_bytecode = True      # no __pycache__ in the source tree
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import clex  # noqa: E402
+import clex  # noqa: E402  (sibling module: a script's directory is on sys.path; see lintpaths.py)
 
 SKIP_IDS = ("noValidConfiguration", "toomanyconfigs", "missingInclude", "missingIncludeSystem")
 _FINDING = re.compile(r"^(?P<file>.*?):(?P<line>\d+):(?P<col>\d+): (?P<sev>\w+): (?P<id>[\w.-]+): (?P<msg>.*)$")

@@ -30,8 +30,7 @@ import subprocess
 import sys
 
 sys.dont_write_bytecode = True      # no __pycache__ in the source tree
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import clex  # noqa: E402
+import clex  # noqa: E402  (sibling module: a script's directory is on sys.path; see lintpaths.py)
 
 GUARD_NAMES = ("fx_guard.h",)
 _LINEMARK = re.compile(r'^#\s*(?:line\s+)?(\d+)\s+"((?:\\.|[^"\\])*)"')

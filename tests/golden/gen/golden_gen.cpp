@@ -10,7 +10,7 @@
 //   gv_imp_vectors.h   impulse sets: G3 (the paper's example, iterates 0-5 and the plan) and a
 //                      G4 subset (Monte Carlo draws of tools/impulse/imp_mc.cpp, seed 1)
 //
-//   golden_gen --scenarios <sim/scenarios> --out <dir>
+//   golden_gen --scenarios <sim/scenarios> --out <dir>      (command line: CLI11; --help)
 //
 // Observer. The double reference (sim/reference/obs_ref) runs in closed loop with the exact plant
 // (sim::SailPlant, as the reference FSW backend hil_host/bridge/ref_backend.cpp does: initialise
@@ -32,6 +32,7 @@
 // Impulse. Problems are built as tests/impulse/test_imp_golden_host.cpp and imp_mc build them
 // (state quantised to q28, tau_f to q29, alpha and units from IMP_TBL_DEFAULT; the reference
 // solves the dequantised problem with the table's guards).
+#include "fsw_cli.hpp"
 #include "impulse/imp_ref_solver.hpp"
 #include "observer/obs_ref.hpp"
 #include "observer/sail_plant.hpp"
@@ -773,17 +774,17 @@ void gen_imp(const std::string &out_dir)
 int main(int argc, char **argv)
 {
     std::string scn_dir, out_dir;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string a = argv[i];
-        if (a == "--scenarios") {
-            scn_dir = argv[i + 1];
-        } else if (a == "--out") {
-            out_dir = argv[i + 1];
-        }
-    }
-    if (scn_dir.empty() || out_dir.empty()) {
-        std::fprintf(stderr, "usage: golden_gen --scenarios <sim/scenarios> --out <dir>\n");
-        return 2;
+    CLI::App app{"golden_gen: build-time golden vectors (gv_obs_vectors.h, gv_imp_vectors.h) from the double "
+                 "references.\nExit 0 written, 1 generation error, 2 bad usage.",
+                 "golden_gen"};
+    fsw_cli::last_value_wins(app);
+    app.add_option("--scenarios", scn_dir, "scenario directory (sim/scenarios)")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    app.add_option("--out", out_dir, "existing directory for the headers")->required()->check(CLI::ExistingDirectory);
+    const int rc = fsw_cli::parse(app, argc, argv, 2);
+    if (rc >= 0) {
+        return rc;
     }
     try {
         gen_obs(scn_dir, out_dir);
