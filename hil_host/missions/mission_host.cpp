@@ -167,6 +167,10 @@ std::string describe_reason(const iface::Mission &m, std::uint32_t reason)
         } else {
             o << ": the " << m.module << " module check refused it (detail " << detail << ")";
         }
+    } else if (code == FSW_TBL_R_UPLOAD_ID || code == FSW_TBL_R_ID) {
+        char id[16];
+        std::snprintf(id, sizeof id, "0x%04X", m.table_id);
+        o << " (" << note << "; the " << m.name << " table is " << id << ")";
     } else if (!note.empty()) {
         o << " (" << note << ")";
     }

@@ -1,5 +1,6 @@
 #include "sil_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -125,11 +126,47 @@ std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scena
     return be;
 }
 
+namespace {
+
+// Loads a table image into a scratch flight software booted like the run's, through the upload
+// path, and throws naming the refusal.
+void check_table_image(const sim::Scenario &scn, const Upload &u)
+{
+    const host::MissionHost &mh = host::mission_host(scn.mission);
+    std::unique_ptr<bridge::InProcessFswBackend> be = make_fixed_backend(scn);
+    const std::int32_t table_id = static_cast<std::int32_t>(u.image[0] | (u.image[1] << 8));
+    bridge::TableAck ack{};
+    for (std::size_t off = 0; off < u.image.size(); off += bridge::kMaxChunk) {
+        bridge::TableChunk c{};
+        c.table_id = table_id;
+        c.revision = static_cast<std::int32_t>(le32(u.image, 8) & 0x7FFFFFFFu);
+        c.total_len = static_cast<std::int32_t>(u.image.size());
+        c.offset = static_cast<std::int32_t>(off);
+        c.n = static_cast<std::int16_t>(std::min<std::size_t>(bridge::kMaxChunk, u.image.size() - off));
+        c.data = u.image.data() + off;
+        (void)be->table_chunk(c, ack);
+        if (ack.result == bridge::kTableRejected) {
+            break;
+        }
+    }
+    if (ack.result != bridge::kTableAccepted) {
+        char id[16];
+        std::snprintf(id, sizeof id, "0x%04X", static_cast<unsigned>(table_id & 0xFFFF));
+        throw std::invalid_argument("table file '" + u.what + "' (table id " + id + ") refused by the " +
+                                    std::string(mh.iface().name) + " flight loader: " +
+                                    host::describe_reason(mh.iface(), static_cast<std::uint32_t>(ack.reason)) +
+                                    "; the flight software keeps its boot table");
+    }
+}
+
+}  // namespace
+
 std::vector<Upload> run_uploads(const sim::Scenario &scn, const std::vector<Upload> &extra)
 {
     std::vector<Upload> v;
     if (!scn.fsw.table_file.empty()) {
         v.push_back(upload_from_file(scn.fsw.table_file, 0.0));
+        check_table_image(scn, v.back());
     }
     v.insert(v.end(), extra.begin(), extra.end());
     return v;

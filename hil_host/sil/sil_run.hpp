@@ -59,7 +59,10 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt);
 std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn);
 
 // The uploads of a run: the scenario's table_file (at t = 0, before the first step) and the extra
-// ones given.
+// ones given. The table file is first loaded into a scratch copy of the flight software through
+// the same upload path: a file the flight loader or the mission's module check refuses is an
+// error (std::invalid_argument) that names the file and the reason in words (the field and its
+// allowed range), before any run starts.
 std::vector<Upload> run_uploads(const sim::Scenario &scn, const std::vector<Upload> &extra);
 
 // Publishes one table image in chunks on GNC_TBL_UP.
