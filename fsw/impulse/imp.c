@@ -375,7 +375,7 @@ static void job_finish(imp_state_t *s, const imp_params_t *p, uint32_t now, fx_s
     uint32_t steps = (now - s->job_t_start) + 1u;
     *st |= s->sol.st_ok;
     for (k = 0u; k < IMP_FAIL_N; k++) {
-        s->tlm.fail_cnt[k] += (uint32_t)s->sol.fail_cnt[k];
+        s->tlm.n_fail[k] += (uint32_t)s->sol.n_fail[k];
     }
     s->tlm.plan_units = s->ws.job.units;
     s->tlm.plan_steps = (uint16_t)((steps > U16_MAX) ? U16_MAX : steps);

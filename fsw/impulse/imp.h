@@ -157,7 +157,7 @@ typedef struct {
     uint8_t  sub_outcome[IMP_NSUB];
     uint8_t  last_fail[IMP_NSUB];  /* cause of the last failed attempt */
     uint16_t attempts[IMP_NSUB];
-    uint16_t fail_cnt[IMP_FAIL_N]; /* per-cause counters over the plan */
+    uint16_t n_fail[IMP_FAIL_N]; /* per-cause counters over the plan */
     uint16_t iters_total;
     int32_t  t1_q29[IMP_NAX];
     int32_t  t2_q29[IMP_NAX];
@@ -317,7 +317,7 @@ typedef struct {
     uint32_t nav_rej;              /* samples discarded by the outlier gate */
     uint32_t cal_rej;              /* calibration windows discarded by cal_gate (THRUST_LEVEL) */
     uint32_t plans_kept;           /* valid re-plans not applied: no gain over the timeline in force */
-    uint32_t fail_cnt[IMP_FAIL_N]; /* attempt failures per cause, over all plans */
+    uint32_t n_fail[IMP_FAIL_N]; /* attempt failures per cause, over all plans */
     uint8_t  mode;
     uint8_t  rej_reason;           /* IMP_REJ_* of the last refused command */
     uint8_t  how_xy;

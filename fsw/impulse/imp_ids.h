@@ -48,7 +48,7 @@
 #define IMP_MODE_ABORTED             8u
 #define IMP_MODE_FAULT               9u
 
-/* attempt failure causes (index of fail_cnt) */
+/* attempt failure causes (index of n_fail) */
 #define IMP_FAIL_NONE                0u
 #define IMP_FAIL_ITER                1u  /* iteration limit */
 #define IMP_FAIL_DIVERGE             2u  /* an iterate left (-tau_f, 2 tau_f) */

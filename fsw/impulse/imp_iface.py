@@ -11,13 +11,13 @@ FAIL = enum("fail", "IMP_FAIL_", [
     ("NONE", 0), ("ITER", 1, "iteration limit"), ("DIVERGE", 2, "an iterate left (-tau_f, 2 tau_f)"),
     ("SINGULAR", 3, "|pivot| < pivot_min"), ("COND", 4, "smallest / largest pivot below 2^-pivot_ratio_sh"),
     ("FX", 5, "any other fx status bit in the attempt"), ("ORDER", 6, "converged, but not 0 <= T1 <= T2 <= tau_f"),
-    ("N", 7, "number of causes")], "attempt failure causes (index of fail_cnt)")
+    ("N", 7, "number of causes")], "attempt failure causes (index of n_fail)")
 
 
 def _tlm():
     f = [Field(n, "u32", "t->" + n) for n in ("plans", "plans_failed", "plans_late", "plans_skipped", "cmd_rej",
                                               "nav_rej", "cal_rej", "plans_kept")]
-    f += [Field("fail_" + n.lower(), "u32", "t->fail_cnt[%du]" % v, note="attempt failures by cause")
+    f += [Field("fail_" + n.lower(), "u32", "t->n_fail[%du]" % v, note="attempt failures by cause")
           for n, v, _ in FAIL.values if n != "N"]
     for n, note in [("mode", "IMP_MODE_*"), ("rej_reason", "IMP_REJ_* of the last refused command"),
                     ("how_xy", "0 none 1 warm 2 rule 3 search"), ("how_z", ""), ("pattern", "polarity bits"),
@@ -59,10 +59,10 @@ MODULE = Module(
     tlm_type="imp_tlm_t",
     tlm_layout=1,
     tlm=_tlm(),
-    sensors=[Chan("nav_x", "1 mm", "relative position x"), Chan("nav_y", "1 mm", "relative position y"),
-             Chan("nav_z", "1 mm", "relative position z"), Chan("nav_vx", "10 um/s", "relative velocity x"),
-             Chan("nav_vy", "10 um/s", "relative velocity y"), Chan("nav_vz", "10 um/s", "relative velocity z"),
-             Chan("nav_step", "step", "the sample's step index (the plant's k)")],
+    # frame R is spec 50 §2.1's: x forward (along-track), y towards the Earth, z = orbit normal
+    sensors=([Chan("r_CT_R_" + a, "1 mm", "chaser position wrt target, R " + a) for a in "xyz"] +
+             [Chan("v_CT_R_" + a, "10 um/s", "chaser velocity wrt target, R " + a) for a in "xyz"] +
+             [Chan("nav_step", "step", "the sample's step index (the plant's k)")]),
     actuators=([Chan("act_start_" + THR[j], "us", "on-window start in the step") for j in range(6)] +
                [Chan("act_len_" + THR[j], "us", "on-window length") for j in range(6)] +
                [Chan("act_mask", "bit set", "bit j: thruster j on")]),

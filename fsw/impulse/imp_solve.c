@@ -299,8 +299,8 @@ static void start_times(imp_ws_t *ws, int32_t tauf_q29)
 static void count_fail(imp_solution_t *sol, uint32_t sub, uint32_t cause)
 {
     sol->last_fail[sub] = (uint8_t)cause;
-    if ((cause < IMP_FAIL_N) && ((uint32_t)sol->fail_cnt[cause] < U16_MAX)) {
-        sol->fail_cnt[cause]++;
+    if ((cause < IMP_FAIL_N) && ((uint32_t)sol->n_fail[cause] < U16_MAX)) {
+        sol->n_fail[cause]++;
     }
 }
 
@@ -397,7 +397,7 @@ static void clear_solution(imp_solution_t *sol)
         sol->dv_q28[i] = 0;
     }
     for (i = 0u; i < IMP_FAIL_N; i++) {
-        sol->fail_cnt[i] = 0u;
+        sol->n_fail[i] = 0u;
     }
     for (i = 0u; i < IMP_NAX; i++) {
         sol->t1_q29[i] = 0;

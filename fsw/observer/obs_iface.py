@@ -40,8 +40,8 @@ MODULE = Module(
     tlm_type="obs_tlm_t",
     tlm_layout=2,   # 2: the executive header gained n_tc, n_tc_rej (layout 1 had neither)
     tlm=_tlm(),
-    sensors=[Chan("gyro_y", "2^-20 rad/s", "rate gyro y (range from the table's gyro_max_cnt)"),
-             Chan("gyro_z", "2^-20 rad/s", "rate gyro z")],
+    sensors=[Chan("omega_BN_B_y", "2^-20 rad/s", "gyro y: body rate wrt inertial, body axes (range: table gyro_max_cnt)"),
+             Chan("omega_BN_B_z", "2^-20 rad/s", "gyro z: body rate wrt inertial, body axes")],
     actuators=[Chan("act_cnt_y", "actuator count", "gimbal rate y command (2^-20 rad/s)"),
                Chan("act_cnt_z", "actuator count", "gimbal rate z command")],
     health=[

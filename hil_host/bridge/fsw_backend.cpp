@@ -2,6 +2,10 @@
 
 namespace bridge {
 
+// The wire status bits are handed to the flight code as FSW_ST_* without translation tables.
+static_assert(kStatusStale == FSW_ST_STALE, "bridge STALE bit != FSW_ST_STALE");
+static_assert(kStatusSat == FSW_ST_SAT, "bridge SAT bit != FSW_ST_SAT");
+
 namespace {
 
 std::uint32_t sat_u32(std::int32_t v) { return (v < 0) ? 0u : static_cast<std::uint32_t>(v); }

@@ -4,6 +4,10 @@
 
 namespace bridge {
 
+// One meaning per status bit on both sides of the codec.
+static_assert(kStatusStale == gnc::sensor_frame_t::STATUS_STALE, "bridge STALE bit != wire");
+static_assert(kStatusSat == gnc::sensor_frame_t::STATUS_SAT, "bridge SAT bit != wire");
+
 namespace {
 
 bool n_ok(std::int16_t n, std::size_t cap)

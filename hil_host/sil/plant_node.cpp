@@ -13,6 +13,10 @@
 #include "gnc/sim_truth_t.hpp"
 #include "sensors/counts.hpp"
 
+// The plant status bits STALE and SAT are the wire bits; NonFinite is published as STALE.
+static_assert(sim::kStatusStale == gnc::sensor_frame_t::STATUS_STALE, "plant STALE bit != wire");
+static_assert(sim::kStatusSat == gnc::sensor_frame_t::STATUS_SAT, "plant SAT bit != wire");
+
 namespace sil {
 
 namespace {
@@ -136,7 +140,7 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
         m.counts[i] = (i < f.n_ch) ? f.cnt[i] : 0;
         std::int8_t st = 0;
         if (i < f.n_ch) {
-            if ((f.status[i] & (sim::kStatusNonFinite | sim::kStatusInvalid)) != 0u) {
+            if ((f.status[i] & (sim::kStatusNonFinite | sim::kStatusStale)) != 0u) {
                 st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_STALE);
             }
             if ((f.status[i] & sim::kStatusSat) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_SAT); }

@@ -80,7 +80,7 @@ SensorFrame CwSilPlant::sense()
     }
     f.cnt[6] = static_cast<std::int32_t>(s.step & 0x7FFFFFFFu);
     for (std::size_t i = 0; i < kCwSensorChannels; ++i) {
-        f.status[i] = s.valid ? std::uint8_t{0u} : kStatusInvalid;
+        f.status[i] = s.valid ? std::uint8_t{0u} : kStatusStale;
     }
     return f;
 }

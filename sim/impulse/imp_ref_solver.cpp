@@ -298,7 +298,7 @@ ImpPlan solve_nd(const ImpNd &p, const ImpGuards &g, const ImpSolveOpt &o)
             const ImpAttempt a = attempt(p, g, sub, pat, t1, t2);
             ++pl.attempts;
             if (a.cause != IMP_FAIL_NONE) {
-                ++pl.fail_cnt[a.cause];
+                ++pl.n_fail[a.cause];
                 return;
             }
             const double dv = dv_of(a, pat);

@@ -101,7 +101,7 @@ struct ImpPlan {
     std::array<double, 3> dv1{}, dv2{};    // impulsive signed dv, nondimensional
     std::array<double, 3> rho{};
     std::array<double, 2> dv{};            // plan dv per subsystem, nondimensional
-    std::array<unsigned, IMP_FAIL_N> fail_cnt{};
+    std::array<unsigned, IMP_FAIL_N> n_fail{};
     int attempts = 0;
 };
 

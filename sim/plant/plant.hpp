@@ -21,10 +21,13 @@ namespace sim {
 // Fixed-size channel arrays mirror the LCM types (fixed arrays only, spec 00 §5.1).
 constexpr std::size_t kMaxChannels = 16u;
 
-// Per-channel sensor status bits.
-constexpr std::uint8_t kStatusSat = 0x01u;        // count at full scale (true value may be beyond it)
-constexpr std::uint8_t kStatusNonFinite = 0x02u;  // truth was NaN/Inf; the count is 0 and SAT is also set
-constexpr std::uint8_t kStatusInvalid = 0x04u;    // the sensor delivered no valid sample (dropout, out of range)
+// Per-channel sensor status bits. STALE and SAT have the values and meanings of the wire
+// (gnc::sensor_frame_t STATUS_STALE / STATUS_SAT) and of the flight code (FSW_ST_STALE /
+// FSW_ST_SAT): one meaning per bit everywhere. NonFinite is the plant's own detail; the plant
+// node publishes it as STALE.
+constexpr std::uint8_t kStatusStale = 0x01u;      // the sensor delivered no valid sample (dropout, out of range)
+constexpr std::uint8_t kStatusSat = 0x02u;        // count at full scale (true value may be beyond it)
+constexpr std::uint8_t kStatusNonFinite = 0x04u;  // truth was NaN/Inf; the count is 0 and SAT is also set
 
 struct SensorFrame {
     std::int64_t utime_us = 0;     // t_k

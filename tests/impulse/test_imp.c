@@ -311,7 +311,7 @@ UT_TEST(iteration_limit_gives_no_solution)
     UT_EQ(g_sol.outcome, IMP_SOL_NO_SOLUTION);
     UT_EQ(g_sol.sub_outcome[IMP_SUB_XY], IMP_SOL_NO_SOLUTION);
     UT_EQ(g_sol.attempts[IMP_SUB_XY], 16);       /* rule + 15 others */
-    UT_CHECK(g_sol.fail_cnt[IMP_FAIL_ITER] >= 1u);
+    UT_CHECK(g_sol.n_fail[IMP_FAIL_ITER] >= 1u);
     UT_EQ(g_sol.how[IMP_SUB_XY], IMP_HOW_NONE);
 }
 
@@ -384,7 +384,7 @@ static void same_solution(const imp_solution_t *a, const imp_solution_t *b)
         UT_CHECK_EQ(a->last_fail[i], b->last_fail[i]);
     }
     for (i = 0u; i < IMP_FAIL_N; i++) {
-        UT_CHECK_EQ(a->fail_cnt[i], b->fail_cnt[i]);
+        UT_CHECK_EQ(a->n_fail[i], b->n_fail[i]);
     }
     for (i = 0u; i < IMP_NAX; i++) {
         UT_CHECK_EQ(a->t1_q29[i], b->t1_q29[i]);
@@ -637,7 +637,7 @@ UT_TEST(no_solution_start_never_fires)
     UT_CHECK((out.health & IMP_H_NO_SOLUTION) != 0u);
     UT_EQ(out.tlm.plans_failed, 1);
     UT_EQ(out.tlm.plan_units, 63);
-    UT_CHECK(out.tlm.fail_cnt[IMP_FAIL_ITER] >= 1u);
+    UT_CHECK(out.tlm.n_fail[IMP_FAIL_ITER] >= 1u);
     in.cmd = IMP_CMD_NONE;
     for (k = 21u; k < (200u + T_EX_STEPS); k += 7u) {
         in.step = k;

@@ -110,7 +110,7 @@ static void digest_solution(gv_dg_t *d, const imp_solution_t *s)
         gv_dg_u32(d, (uint32_t)s->attempts[i]);
     }
     for (i = 0u; i < IMP_FAIL_N; i++) {
-        gv_dg_u32(d, (uint32_t)s->fail_cnt[i]);
+        gv_dg_u32(d, (uint32_t)s->n_fail[i]);
     }
     gv_dg_u32(d, (uint32_t)s->iters_total);
     gv_dg_i32n(d, s->t1_q29, IMP_NAX);

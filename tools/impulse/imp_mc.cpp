@@ -432,7 +432,7 @@ int main(int argc, char **argv)
                      static_cast<unsigned>(sol.iters_total));
         std::fprintf(fo, "%u,%u,%d,%d,%d,", static_cast<unsigned>(sol.attempts[0]), static_cast<unsigned>(sol.attempts[1]),
                      pl.attempts, sol.fres_lsb[0], sol.fres_lsb[1]);
-        for (unsigned k = 1; k < IMP_FAIL_N; ++k) { std::fprintf(fo, "%u,", static_cast<unsigned>(sol.fail_cnt[k])); }
+        for (unsigned k = 1; k < IMP_FAIL_N; ++k) { std::fprintf(fo, "%u,", static_cast<unsigned>(sol.n_fail[k])); }
         std::fprintf(fo, "%d,%d,%.6g,%.6g,%d,%.6g,%.6g,%.6g,%u,%u\n", order_fx, order_ref, dt_max_ms, dt_bound_ms, tie, miss_r, miss_v, miss_r_ref,
                      static_cast<unsigned>(sol.st_ok), static_cast<unsigned>(sol.st_fail));
     }
