@@ -124,17 +124,32 @@ void imp_tl_response(imp_state_t *s, const imp_params_t *p, const imp_timeline_t
     }
 }
 
+/* The miss predicted from u_uncal is an alarm only when nothing can reduce it any more: while a
+   calibration epoch is still due before the first second burn (the last point a re-plan can
+   move the timeline), the level will be estimated there and the prediction uses u_cal. The
+   rule raised EXPECTED_MISS at 0.1 s of every nominal calibrated run (predicting 27.9 m where
+   calibration then delivers < 1 m), an alarm no operator should chase. If the epochs pass
+   without a usable window (nav stale, burns below dv_cal_min) the prediction falls back to
+   u_uncal before the first second burn starts, so the warning still comes in time. With
+   calibration off it is final from the first plan (A4-5's "raised before the first second burn"). */
+static bool cal_epoch_ahead(const imp_state_t *s, const imp_params_t *p)
+{
+    return (p->cal_enable != 0u) && (p->replan_period != 0u) && (s->mode != IMP_MODE_FINAL) &&
+           (!imp_tl_final(s, p, s->next_tp + p->plan_lead));
+}
+
 uint32_t imp_tl_expected_miss(imp_state_t *s, const imp_params_t *p, fx_status_t *st)
 {
     uint32_t h = 0u;
     uint32_t r;
+    bool ahead = cal_epoch_ahead(s, p);
     for (r = 0u; r < IMP_NAX; r++) {
         s->tlm.exp_dr_q28[r] = 0;
         s->tlm.exp_dv_q28[r] = 0;
         if ((s->act.valid != 0u) && (s->act.n2_g[r] < s->act.ntot_g)) {
             uint32_t j = s->act.thr2[r];
             int32_t d = imp_g2tau(p, (uint64_t)(s->act.ntot_g - s->act.n2_g[r]), st);
-            int32_t u = imp_cal_done(s, p, j) ? p->u_cal_q30 : p->u_uncal_q30;
+            int32_t u = (ahead || imp_cal_done(s, p, j)) ? p->u_cal_q30 : p->u_uncal_q30;
             int32_t ua = fx_mul(u, IMP_ALPHA_Q, s->cal.alpha_q30[j], IMP_ALPHA_Q, IMP_ALPHA_Q, st);
             /* dV = u alpha d (q28), dR = dV d / 2 (q28: the product in q27 read as q28 halves it) */
             int32_t dv = fx_mul(ua, IMP_ALPHA_Q, d, IMP_T_Q, IMP_X_Q, st);

@@ -106,15 +106,22 @@ std::string bits_str(std::uint32_t word, const iface::Name *names, std::size_t n
     char b[16];
     std::snprintf(b, sizeof b, "0x%08X", word);
     std::string parts;
+    std::uint32_t named = 0u;
     for (unsigned bit = 0; bit < 32u; ++bit) {
         const std::uint32_t v = 1u << bit;
-        if ((word & v) == 0u) {
+        if ((word & v) == 0u || (named & v) != 0u) {
             continue;
         }
         std::string nm = (bit < 8u) ? ("fx" + std::to_string(bit)) : ("bit" + std::to_string(bit));
         for (std::size_t i = 0; i < n; ++i) {
-            if ((names[i].value & v) != 0u) {   // a multi-bit field names each of its bits
-                nm = names[i].name;
+            const std::uint32_t m = names[i].value;
+            if ((m & v) == 0u) {
+                continue;
+            }
+            nm = names[i].name;
+            if ((m & (m - 1u)) != 0u) {   // a multi-bit field (a mode, an axis index): NAME=value
+                nm += "=" + std::to_string((word & m) / (m & (~m + 1u)));   // field value (mask's low bit = 1)
+                named |= m;
             }
         }
         parts += (parts.empty() ? "" : " ") + nm;

@@ -702,11 +702,14 @@ unsigned ImpFsw::health(const imp_in_t &in, imp_out_t &out)
     exp_dr_.fill(0);
     exp_dv_.fill(0);
     if ((mode_ == IMP_MODE_ARMED || mode_ == IMP_MODE_FIRING || mode_ == IMP_MODE_FINAL) && act_.valid) {
+        // u_cal while a calibration epoch is still due before the second burns (fsw imp_tl.c)
+        const bool ahead = p_.cal_enable != 0 && p_.replan_period != 0 && mode_ != IMP_MODE_FINAL &&
+                           !final_at(next_tp_ + p_.plan_lead);
         for (size_t r = 0; r < 3; ++r) {
             if (act_.n2[r] >= act_.ntot) { continue; }
             const unsigned j = act_.thr2[r];
             const double d = tau_g(act_.ntot - act_.n2[r]);
-            const double u = (cal_done(j) ? p_.u_cal_q30 : p_.u_uncal_q30) / kQ30;
+            const double u = ((ahead || cal_done(j)) ? p_.u_cal_q30 : p_.u_uncal_q30) / kQ30;
             exp_dv_[r] = u * alpha_[j] * d;
             exp_dr_[r] = 0.5 * exp_dv_[r] * d;
             if (exp_dr_[r] > p_.miss_flag_q28 / kQ28) { h |= IMP_H_EXPECTED_MISS; }

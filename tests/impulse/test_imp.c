@@ -712,35 +712,45 @@ UT_TEST(timeline_fires_the_plan)
 }
 
 /* EXPECTED_MISS (spec 50 §5.5): dR = u alpha d^2 / 2 per axis from the second-burn length d of
-   the timeline in force, u = u_uncal before any calibration. Checked against the formula in
-   int64 from the telemetry's switching steps; the example's x burn (~215.7 s) predicts ~27.9 m
-   > 10 m, so the flag is raised as soon as the plan exists. */
-UT_TEST(expected_miss_is_predicted_from_the_final_burns)
+   the timeline in force. Calibration off: the prediction is final from the first plan, u =
+   u_uncal; the example's x burn (~215.7 s) predicts ~27.9 m > 10 m, so the flag is raised as soon
+   as the plan exists. Calibration on: a calibration epoch is still due before the second burns,
+   so u = u_cal (~4.65 m) and no flag. Both checked against the formula in int64 from the
+   telemetry's switching steps. */
+static void expected_miss_case(const imp_params_t *p, int32_t u_q30, bool flag)
 {
     imp_out_t out;
     imp_in_t in;
     uint32_t r;
     const uint32_t t0 = 100u;
     const uint32_t tf = t0 + T_EX_STEPS;
-    (void)imp_init(&g_s, &IMP_TBL_DEFAULT, &out);
+    UT_EQ(imp_init(&g_s, p, &out), FSW_OK);
     in = start_cmd(0u, t0, tf);
-    imp_step(&g_s, &IMP_TBL_DEFAULT, &in, &out);
-    (void)run_until(&g_s, &IMP_TBL_DEFAULT, &in, &out, 1u, 20u, IMP_MODE_ARMED);
+    imp_step(&g_s, p, &in, &out);
+    (void)run_until(&g_s, p, &in, &out, 1u, 20u, IMP_MODE_ARMED);
     UT_UEQ(mode_of(&out), IMP_MODE_ARMED);
-    UT_CHECK((out.health & IMP_H_EXPECTED_MISS) != 0u);
+    UT_CHECK_EQ((out.health & IMP_H_EXPECTED_MISS) != 0u, flag);
     for (r = 0u; r < IMP_NAX; r++) {
-        /* d as tau q29 from the table's grid constant; u = 0.03 (q30); each product truncated
-           here and rounded in the module: within 2 LSB plus 1e-6 relative */
-        int64_t d = ((int64_t)(tf - out.tlm.on2_step[r]) * IMP_TBL_DEFAULT.k_gtau_m) >> IMP_TBL_DEFAULT.k_gtau_sh;
-        int64_t dv = ((d * IMP_TBL_DEFAULT.u_uncal_q30) >> 30) / 2;      /* q29 -> q28 */
+        /* d as tau q29 from the table's grid constant; u in q30; each product truncated here
+           and rounded in the module: within 2 LSB plus 1e-6 relative */
+        int64_t d = ((int64_t)(tf - out.tlm.on2_step[r]) * p->k_gtau_m) >> p->k_gtau_sh;
+        int64_t dv = ((d * u_q30) >> 30) / 2;                             /* q29 -> q28 */
         int64_t dr = ((dv * d) >> 29) / 2;                                /* u d^2 / 2 */
         UT_CHECK_LE(iabs64((int64_t)out.tlm.exp_dv_q28[r] - dv), 2 + (dv / 1000000));
         UT_CHECK_LE(iabs64((int64_t)out.tlm.exp_dr_q28[r] - dr), 2 + (dr / 1000000));
     }
-    /* x: 27.9 m = 239 710 LSB of q28 (27.9 / 31250.21 * 2^28), the spec's printed figure; the
-       drifted state and the grid move it by < 1 m here */
-    UT_CHECK_LE(iabs64((int64_t)out.tlm.exp_dr_q28[0] - 239710), 8590);
-    UT_CHECK(out.tlm.exp_dr_q28[0] > IMP_TBL_DEFAULT.miss_flag_q28);
+    /* x: 27.9 m = 239 710 LSB of q28 (27.9 / 31250.21 * 2^28) at u = 0.03, the spec's printed
+       figure, scaled by u / 0.03; the drifted state and the grid move it by < 1 m here */
+    UT_CHECK_LE(iabs64((int64_t)out.tlm.exp_dr_q28[0] - ((239710 * (int64_t)u_q30) / 32212255)), 8590);
+    UT_CHECK_EQ(out.tlm.exp_dr_q28[0] > p->miss_flag_q28, flag);
+}
+
+UT_TEST(expected_miss_is_predicted_from_the_final_burns)
+{
+    imp_params_t off = IMP_TBL_DEFAULT;
+    off.cal_enable = 0u;
+    expected_miss_case(&off, off.u_uncal_q30, true);
+    expected_miss_case(&IMP_TBL_DEFAULT, IMP_TBL_DEFAULT.u_cal_q30, false);
 }
 
 /* §5.4 / §8: while the latest accepted sample is older than nav_timeout, NAV_STALE is raised
@@ -752,6 +762,7 @@ UT_TEST(stale_nav_skips_replans_then_final)
     imp_in_t in;
     uint32_t k;
     uint32_t saw_final = 0u;
+    uint32_t k_miss = 0u;
     const uint32_t t0 = 100u;
     const uint32_t tf = t0 + T_EX_STEPS;
     (void)imp_init(&g_s, &IMP_TBL_DEFAULT, &out);
@@ -767,8 +778,15 @@ UT_TEST(stale_nav_skips_replans_then_final)
         if (mode_of(&out) == IMP_MODE_FINAL) {
             saw_final = 1u;
         }
+        if ((k_miss == 0u) && ((out.health & IMP_H_EXPECTED_MISS) != 0u)) {
+            k_miss = k;
+        }
         UT_CHECK((out.health & FX_ST_MASK) == 0u);
     }
+    /* no window was ever accepted: once the last epoch before the second burns has passed the
+       prediction is final (u_uncal, x ~27.9 m), raised before the first second burn (x) starts */
+    UT_CHECK(k_miss >= (t0 + (8u * IMP_TBL_DEFAULT.replan_period)));
+    UT_CHECK(k_miss < out.tlm.on2_step[0]);
     /* epochs t0 + i N while t_a = t_p + 50 < the earliest second burn (x, ~t0 + 8385): 8 */
     UT_CHECK_EQ(out.tlm.plans_skipped, 8);
     UT_CHECK_EQ(out.tlm.plans, 1);                     /* only the START plan */
