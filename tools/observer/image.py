@@ -31,20 +31,33 @@ PAYLOAD_BYTES = 646
 NX, NZ, NU, NY = 6, 7, 2, 2
 EST = {"OBS_EST_EKF": 0, "OBS_EST_CONST_W": 2}
 
-# (obs_params_t field, struct code, count) in wire order (fsw/app/fsw_obs_table.c header comment)
+I32MAX = 2 ** 31 - 1
+
+# (obs_params_t field, struct code, count[, lo, hi]) in wire order (fsw/app/fsw_obs_table.c header
+# comment), with the flight loader's limits (OBS_LIMS of fsw/observer/obs_table.c) where it has
+# any: every scalar and the ls/p0/qd vectors; matrix entries span the whole int32 range.
 PAYLOAD = [
-    ("period_us", "I", 1), ("estimator", "B", 1), ("gyro_cnt_shift", "B", 1), ("act_cnt_shift", "B", 1),
-    ("d2_reject", "B", 1), ("sigma", "i", 1), ("gyro_max_cnt", "i", 1), ("act_max_cnt", "i", 1),
-    ("bdot_max_q29", "i", 1), ("bdot_hw_q29", "i", 1),
-    ("q_phi0", "B", 1), ("q_phik", "B", 1), ("q_gam0", "B", 1), ("q_gamk", "B", 1), ("q_d", "B", 1), ("q_w", "B", 1),
-    ("n_lost", "H", 1), ("n_good", "H", 1), ("n_sat", "H", 1), ("n_gap_max", "H", 1),
-    ("kappa0_q28", "i", 1), ("kappa_init_q28", "i", 1), ("kappa_lo_q28", "i", 1), ("kappa_hi_q28", "i", 1),
-    ("r_q30", "i", 1), ("p_floor_q30", "i", 1), ("p_ceil_q30", "i", 1), ("d2_max_q16", "i", 1),
-    ("ls", "i", NZ), ("p0_q30", "i", NZ), ("qd_q30", "i", NZ),
+    ("period_us", "I", 1, 1000, 1_000_000), ("estimator", "B", 1, 0, 2), ("gyro_cnt_shift", "B", 1, 0, 29),
+    ("act_cnt_shift", "B", 1, 0, 29), ("d2_reject", "B", 1, 0, 1), ("sigma", "i", 1, -1, 1),
+    ("gyro_max_cnt", "i", 1, 1, I32MAX), ("act_max_cnt", "i", 1, 1, I32MAX),
+    ("bdot_max_q29", "i", 1, 1, I32MAX), ("bdot_hw_q29", "i", 1, 1, I32MAX),
+    ("q_phi0", "B", 1, 16, 40), ("q_phik", "B", 1, 16, 40), ("q_gam0", "B", 1, 16, 40), ("q_gamk", "B", 1, 16, 40),
+    ("q_d", "B", 1, 16, 40), ("q_w", "B", 1, 16, 40),
+    ("n_lost", "H", 1, 1, 65535), ("n_good", "H", 1, 1, 65535), ("n_sat", "H", 1, 1, 65535),
+    ("n_gap_max", "H", 1, 1, 65535),
+    ("kappa0_q28", "i", 1, 1, I32MAX), ("kappa_init_q28", "i", 1, 1, I32MAX), ("kappa_lo_q28", "i", 1, 1, I32MAX),
+    ("kappa_hi_q28", "i", 1, 1, I32MAX),
+    ("r_q30", "i", 1, 1, I32MAX), ("p_floor_q30", "i", 1, 1, I32MAX), ("p_ceil_q30", "i", 1, 1, I32MAX),
+    ("d2_max_q16", "i", 1, 1, I32MAX),
+    ("ls", "i", NZ, -40, 40), ("p0_q30", "i", NZ, 1, I32MAX), ("qd_q30", "i", NZ, 4, I32MAX),
     ("phi0", "i", NX * NX), ("phik", "i", NX * NX), ("gam0", "i", NX * NU), ("gamk", "i", NX * NU),
     ("d", "i", NU * NX), ("w", "i", NZ * NY),
 ]
-LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES)
+# value[a] + margin <= value[b] (OBS_RELS)
+RELS = [("bdot_max_q29", "bdot_hw_q29", 0), ("kappa_lo_q28", "kappa_hi_q28", 1), ("kappa_lo_q28", "kappa0_q28", 0),
+        ("kappa0_q28", "kappa_hi_q28", 0), ("kappa_lo_q28", "kappa_init_q28", 0),
+        ("kappa_init_q28", "kappa_hi_q28", 0), ("p_floor_q30", "p_ceil_q30", 1)]
+LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES, RELS, "fsw/observer/obs_table.c")
 FIELDS = LAYOUT.fields
 NAMES = [name for name, _ in ctable.TABLES]
 
