@@ -137,7 +137,7 @@ def _problem(cls, err):
     if typ == "missing":
         return "missing required key '%s': %s" % (name, describe(cls, name))
     if typ in ("greater_than_equal", "less_than_equal", "greater_than", "less_than"):
-        return "%s = %s is out of range: %s" % (where, _num(val), describe(cls, name))
+        return "%s = %r is out of range: %s" % (where, val, describe(cls, name))
     if typ in ("too_short", "too_long"):
         n = err["ctx"].get("min_length", err["ctx"].get("max_length"))
         return "%s has %d entries, expected %s: %s" % (where, err["ctx"]["actual_length"], n, describe(cls, name))

@@ -98,6 +98,23 @@ class Layout(object):
                            % (a, p[a], b, p[b], a, (" + %d" % margin) if margin else "", b, src, frm(a)))
         return out
 
+    def descriptor_text(self):
+        """The limits descriptor this layout mirrors, in the format of tests/common/tbl_desc_dump.c
+        (the C descriptor printed by the flight build): a text diff proves the mirror exact."""
+        ftype = {"B": 1, "H": 2, "I": 3, "i": 4}
+        lims, index = [], {}
+        off = 0
+        for f, c, n in self.payload:
+            size = struct.calcsize("<" + c)
+            if f in self.limits:
+                index[f] = len(lims)
+                lims += ["lim %d %d %d %d" % (off + k * size, ftype[c], self.limits[f][0], self.limits[f][1])
+                         for k in range(n)]
+            off += n * size
+        rels = ["rel %d %d %d" % (index[a], index[b], m) for a, b, m in self.rels]
+        head = "desc %d %d %d %d %d" % (self.table_id, self.layout_version, self.payload_bytes, len(lims), len(rels))
+        return "\n".join([head] + lims + rels) + "\n"
+
     def pack_payload(self, p):
         flat = []
         for f, _, n in self.payload:
