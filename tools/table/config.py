@@ -183,14 +183,23 @@ def load(path, cls):
     return validate(cls, read_yaml(path), path)
 
 
+def _default_text(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (list, tuple)):
+        return "[%s]" % ", ".join(_default_text(x) for x in v)
+    if isinstance(v, str):
+        return repr(v)
+    return repr(v)
+
+
 def keys_table(cls):
-    """Markdown table of a model's keys: key, unit, allowed, default, meaning."""
+    """Markdown table of a model's keys: key, allowed values, default, meaning."""
     rows = ["| key | allowed | default | meaning |", "|---|---|---|---|"]
     for name, f in cls.model_fields.items():
-        d = "required" if f.is_required() else ("—" if f.default is None else _num(f.default)
-                                                 if not isinstance(f.default, (list, tuple)) else
-                                                 "[%s]" % ", ".join(_num(v) for v in f.default))
-        rows.append("| `%s` | %s | %s | %s |" % (name, range_text(cls, name), d, f.description))
+        d = "required" if f.is_required() else ("—" if f.default is None else _default_text(f.default))
+        rows.append("| `%s` | %s | %s | %s |" % (name, range_text(cls, name), d,
+                                                 (f.description or "").replace("|", "\\|")))
     return "\n".join(rows)
 
 
