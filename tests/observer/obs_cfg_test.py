@@ -90,6 +90,9 @@ def main(argv=None):
           [r"k_hat0_per_s2 = 0.03 1/s\^2 is outside the band \[k_hat_min_per_s2, k_hat_max_per_s2\] = \[0.005, 0.02\]"])
     s.bad("a band without the linearisation point", BASE + "k_hat_min_per_s2: 0.011\nk_hat0_per_s2: 0.0115\n",
           [r"k_hat_min_per_s2 = 0.011 and k_hat_max_per_s2 = 0.02 1/s\^2 must bracket the linearisation point 0.01"])
+    s.bad("a gyro full scale beyond the rate format", BASE + "gyro_max_cnt: 5000000\n",
+          [r"gyro_max_cnt = 5000000 counts at gyro_lsb_shift = 20 is a full scale of 4.76837 rad/s: the flight rate "
+           r"format \(q29\) holds less than 4 rad/s"])
     s.bad("another mission's configuration", "mission: rendezvous\nmodel: M-phys\nperiod_us: 20000\n",
           [r"mission = 'rendezvous' is not allowed: .*allowed one of 'detumble'"])
 

@@ -114,6 +114,10 @@ class ObserverConfig(tc.Config):
         if self.bdot_max_radps > self.gimbal_hw_limit_radps:
             bad.append("bdot_max_radps = %g rad/s is above gimbal_hw_limit_radps = %g rad/s: allowed (0, "
                        "gimbal_hw_limit_radps]" % (self.bdot_max_radps, self.gimbal_hw_limit_radps))
+        fs = self.gyro_max_cnt * 2.0 ** -self.gyro_lsb_shift
+        if fs >= 4.0:
+            bad.append("gyro_max_cnt = %d counts at gyro_lsb_shift = %d is a full scale of %g rad/s: the flight rate "
+                       "format (q29) holds less than 4 rad/s" % (self.gyro_max_cnt, self.gyro_lsb_shift, fs))
         act = int(self.gimbal_hw_limit_radps * 2.0 ** self.gimbal_lsb_shift)
         if not 1 <= act < 2 ** 31:
             bad.append("gimbal_hw_limit_radps = %g rad/s is %d counts at gimbal_lsb_shift = %d: allowed [1, 2^31 - 1] "
