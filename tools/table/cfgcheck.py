@@ -5,7 +5,7 @@ import importlib
 import io
 import os
 import re
-import sys
+import shutil
 import tempfile
 
 
@@ -98,5 +98,6 @@ class Suite(object):
         return ok
 
     def done(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
         print("%d passed, %d failed" % (self.n_ok, self.n_bad))
         return 1 if self.n_bad else 0
