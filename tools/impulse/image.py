@@ -31,26 +31,44 @@ LAYOUT_VERSION = 1
 PAYLOAD_BYTES = 176
 NTHR = 6
 
-# (imp_params_t field, struct code, count) in wire order (fsw/app/fsw_imp_table.c header comment)
+I32MAX = 2 ** 31 - 1
+US_MAX = 10_000_000        # 10 s
+STEPS_MAX = 10_000_000     # step counts: 10^4 s at a 1 ms period
+ALPHA_MIN, ALPHA_MAX = image_writer.q_rat(4, 5, 30), image_writer.q_rat(6, 5, 30)
+TAU_LO, TAU_HI = image_writer.q_rat(1, 5, 29), 2 << 29
+HALF_Q30 = image_writer.q_rat(1, 2, 30)
+
+# (imp_params_t field, struct code, count, lo, hi) in wire order (fsw/app/fsw_imp_table.c header
+# comment), with the flight loader's limits (IMP_LIMS of fsw/impulse/imp_table.c) for every entry.
 PAYLOAD = [
-    ("period_us", "I", 1), ("subtick_us", "I", 1), ("t_min_us", "I", 1), ("plan_lead", "I", 1),
-    ("replan_period", "I", 1), ("t_stop", "I", 1), ("nav_timeout", "I", 1),
-    ("max_iter", "B", 1), ("plan_iter_per_step", "B", 1), ("pivot_ratio_sh", "B", 1), ("k_tau_sh", "B", 1),
-    ("r_tol_lsb", "i", 1), ("pivot_min_q26", "i", 1), ("rho_warn_q28", "i", 1), ("rho_reject_q28", "i", 1),
-    ("dv_tie_q28", "i", 1), ("tauf_min_q29", "i", 1), ("tauf_max_q29", "i", 1), ("w_v_q28", "i", 1),
-    ("alpha_q30", "i", NTHR),
-    ("k_pos_m", "i", 1), ("k_pos_sh", "B", 1), ("k_vel_sh", "B", 1), ("k_tick_sh", "B", 1), ("spare", "B", 1),
-    ("k_vel_m", "i", 1), ("k_tau_m", "i", 1), ("k_tick_m", "i", 1),
-    ("omega_nradps", "I", 1), ("a_nom_umps2", "I", 1),
-    ("k_gtau_m", "i", 1), ("k_gtick_m", "i", 1), ("k_gtau_sh", "B", 1), ("k_gtick_sh", "B", 1),
-    ("cal_enable", "B", 1), ("cal_pool", "B", 1),
-    ("dv_cal_min_q28", "i", 1), ("cal_gate_q30", "i", 1), ("u_uncal_q30", "i", 1), ("u_cal_q30", "i", 1),
-    ("miss_flag_q28", "i", 1),
-    ("fd_window", "I", 1), ("fd_frac_q30", "i", 1), ("fd_persist", "B", 1), ("spare2", "B", 3),
-    ("nav_gate_pos_q28", "i", 1), ("nav_gate_vel_q28", "i", 1), ("nav_gate_acc_q28", "i", 1),
-    ("replan_gain_q30", "i", 1),
+    ("period_us", "I", 1, 1000, US_MAX), ("subtick_us", "I", 1, 0, US_MAX), ("t_min_us", "I", 1, 0, US_MAX),
+    ("plan_lead", "I", 1, 2, STEPS_MAX), ("replan_period", "I", 1, 0, STEPS_MAX), ("t_stop", "I", 1, 0, STEPS_MAX),
+    ("nav_timeout", "I", 1, 1, STEPS_MAX),
+    ("max_iter", "B", 1, 1, 16), ("plan_iter_per_step", "B", 1, 4, 255), ("pivot_ratio_sh", "B", 1, 0, 30),
+    ("k_tau_sh", "B", 1, 0, 60),
+    ("r_tol_lsb", "i", 1, 1, 65536), ("pivot_min_q26", "i", 1, 1, 1 << 26), ("rho_warn_q28", "i", 1, 1, 1 << 28),
+    ("rho_reject_q28", "i", 1, 1, 1 << 28), ("dv_tie_q28", "i", 1, 0, 1 << 28),
+    ("tauf_min_q29", "i", 1, TAU_LO, TAU_HI), ("tauf_max_q29", "i", 1, TAU_LO, TAU_HI), ("w_v_q28", "i", 1, 1, 1 << 30),
+    ("alpha_q30", "i", NTHR, ALPHA_MIN, ALPHA_MAX),
+    ("k_pos_m", "i", 1, 1, I32MAX), ("k_pos_sh", "B", 1, 0, 62), ("k_vel_sh", "B", 1, 0, 62),
+    ("k_tick_sh", "B", 1, 1, 60), ("spare", "B", 1, 0, 0),
+    ("k_vel_m", "i", 1, 1, I32MAX), ("k_tau_m", "i", 1, 1, I32MAX), ("k_tick_m", "i", 1, 1, I32MAX),
+    ("omega_nradps", "I", 1, 1000, 2_000_000), ("a_nom_umps2", "I", 1, 1, 10_000_000),
+    ("k_gtau_m", "i", 1, 1, I32MAX), ("k_gtick_m", "i", 1, 1, I32MAX), ("k_gtau_sh", "B", 1, 0, 60),
+    ("k_gtick_sh", "B", 1, 0, 60),
+    ("cal_enable", "B", 1, 0, 1), ("cal_pool", "B", 1, 0, 1),
+    ("dv_cal_min_q28", "i", 1, 0, 1 << 28), ("cal_gate_q30", "i", 1, 1, HALF_Q30),
+    ("u_uncal_q30", "i", 1, 0, HALF_Q30), ("u_cal_q30", "i", 1, 0, HALF_Q30),
+    ("miss_flag_q28", "i", 1, 1, I32MAX),
+    ("fd_window", "I", 1, 1, 60000), ("fd_frac_q30", "i", 1, 1, (1 << 30) - 1), ("fd_persist", "B", 1, 1, 255),
+    ("spare2", "B", 3, 0, 0),
+    ("nav_gate_pos_q28", "i", 1, 1, I32MAX), ("nav_gate_vel_q28", "i", 1, 1, I32MAX),
+    ("nav_gate_acc_q28", "i", 1, 0, I32MAX), ("replan_gain_q30", "i", 1, 0, (1 << 30) - 1),
 ]
-LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES)
+# value[a] + margin <= value[b] (IMP_RELS)
+RELS = [("t_min_us", "period_us", 0), ("subtick_us", "period_us", 0), ("rho_warn_q28", "rho_reject_q28", 0),
+        ("tauf_min_q29", "tauf_max_q29", 0), ("u_cal_q30", "u_uncal_q30", 0)]
+LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES, RELS, "fsw/impulse/imp_table.c")
 FIELDS = LAYOUT.fields
 # tool name -> (C name, period_us, subtick_us), in ctable's order
 TABLES = {n.lower().replace("imp_tbl_", "imp_"): (n, per, sub) for n, per, sub, _ in ctable.TABLES}
@@ -75,9 +93,9 @@ def params(name):
     _, period_us, subtick_us = TABLES[name]
     vals = [(f, _c_value(v)) for f, v, _ in ctable.fields(period_us, subtick_us)]
     names = [f for f, _ in vals]
-    if names != [f for f, _, _ in PAYLOAD] + ["revision"]:
+    if names != [e[0] for e in PAYLOAD] + ["revision"]:
         raise AssertionError("image: ctable's imp_params_t fields %s differ from the wire layout %s + revision"
-                             % (names, [f for f, _, _ in PAYLOAD]))
+                             % (names, [e[0] for e in PAYLOAD]))
     p = dict(vals)
     p.pop("revision")
     for f, (_, n) in FIELDS.items():

@@ -1,5 +1,6 @@
 """python -m tools.observer {design --out DIR | ctable [--check] | truth --out H | check [GROUP ...] |
-   image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE | --all DIR)} (from the repo root)."""
+   image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE | --all DIR) |
+   table (--config CFG.yaml -o FILE [--revision N] | --keys)} (from the repo root)."""
 import argparse
 import sys
 
@@ -24,7 +25,16 @@ def main(argv=None):
     im.add_argument("--set", action="append", metavar="FIELD=INT",
                     help="override an obs_params_t field with a raw integer before the CRC (repeatable; "
                          "FIELD[i]=INT for one vector entry, hdr.FIELD=INT for a header word)")
+    tb = sub.add_parser("table", help="design the observer table of a detumbling mission configuration (YAML) "
+                                      "and write its image")
+    tb.add_argument("--config", metavar="CFG.yaml", help="mission configuration (keys: --keys)")
+    tb.add_argument("-o", metavar="IMAGE.bin", help="output image")
+    tb.add_argument("--revision", type=int, default=1, help="header revision (default 1)")
+    tb.add_argument("--keys", action="store_true", help="print the configuration keys (markdown table) and exit")
     a = ap.parse_args(argv)
+    if a.cmd == "table":
+        from . import config
+        return config.main(a)
     if a.cmd == "image":
         from . import image
         return image.main(a)

@@ -7,6 +7,7 @@ The boot tables are committed (like fx_trig_coef.h); a golden test regenerates t
 byte identity. Every integer carries its real value in a comment. The truth header is generated
 at build time for host tests only (exact ZOH of the true plant, k^2 = 0.01, in double).
 """
+import dataclasses
 import os
 import sys
 
@@ -30,6 +31,32 @@ D2_Q = 16
 X_Q = 29
 KAPPA_Q = 28
 P_Q = 30
+
+
+
+@dataclasses.dataclass(frozen=True)
+class Hw:
+    """The table fields the design tool does not own: sensor and actuator scales, the command limit,
+    the covariance floor/ceiling and fault handling. Defaults: the constants above (every boot table)."""
+    gyro_lsb_log2: int = GYRO_LSB_LOG2
+    act_lsb_log2: int = ACT_LSB_LOG2
+    gyro_max_cnt: int = GYRO_MAX_CNT
+    bdot_hw: float = BDOT_HW
+    bdot_max: float = BDOT_MAX
+    p_floor: int = P_FLOOR
+    p_ceil: float = P_CEIL
+    n_lost: int = FAULT["n_lost"]
+    n_good: int = FAULT["n_good"]
+    n_sat: int = FAULT["n_sat"]
+    n_gap_max: int = FAULT["n_gap_max"]
+    d2_max: float = FAULT["d2_max"]
+    d2_reject: int = FAULT["d2_reject"]
+
+    def act_max_cnt(self):
+        return int(self.bdot_hw * 2.0 ** -self.act_lsb_log2)
+
+
+HW = Hw()
 
 TABLES = [("obs_50hz_phys", "OBS_TBL_50HZ_PHYS"), ("obs_50hz_paper", "OBS_TBL_50HZ_PAPER"),
           ("obs_5hz_paper", "OBS_TBL_5HZ_PAPER"), ("obs_paper_printed", "OBS_TBL_PAPER_PRINTED")]
@@ -56,7 +83,7 @@ def _scalar(lines, field, value, q, unit=""):
     lines.append("    .%s = INT32_C(%d),  /* %.10g%s, q%d */" % (field, q_int(value, q), value, unit, q))
 
 
-def table_c(name, sym, tab):
+def table_c(name, sym, tab, hw=HW):
     mat = tab["matrices"]
     ekf = tab["ekf"]
     lines = ["/* %s: %s, sigma %+d, h = %g s, %s (%s) */" % (name, tab["model"], tab["sigma"], tab["h"],
@@ -65,13 +92,13 @@ def table_c(name, sym, tab):
     lines.append("    .period_us = %du," % tab["period_us"])
     lines.append("    .estimator = %s," % ("OBS_EST_EKF" if tab["estimator"] == "EKF" else "OBS_EST_CONST_W"))
     lines.append("    .sigma = %d," % tab["sigma"])
-    lines.append("    .gyro_cnt_shift = %du,  /* 2^%d rad/s counts -> q%d */" % (X_Q + GYRO_LSB_LOG2, GYRO_LSB_LOG2, X_Q))
-    lines.append("    .act_cnt_shift = %du,   /* q%d -> 2^%d rad/s counts */" % (X_Q + ACT_LSB_LOG2, X_Q, ACT_LSB_LOG2))
-    lines.append("    .gyro_max_cnt = INT32_C(%d),  /* full scale, %.6g rad/s */" % (GYRO_MAX_CNT, GYRO_MAX_CNT * 2.0 ** GYRO_LSB_LOG2))
-    act_max = int(BDOT_HW * 2.0 ** -ACT_LSB_LOG2)
-    lines.append("    .act_max_cnt = INT32_C(%d),  /* %.6g rad/s hardware clip */" % (act_max, act_max * 2.0 ** ACT_LSB_LOG2))
-    _scalar(lines, "bdot_max_q29", BDOT_MAX, X_Q, " rad/s")
-    _scalar(lines, "bdot_hw_q29", BDOT_HW, X_Q, " rad/s")
+    lines.append("    .gyro_cnt_shift = %du,  /* 2^%d rad/s counts -> q%d */" % (X_Q + hw.gyro_lsb_log2, hw.gyro_lsb_log2, X_Q))
+    lines.append("    .act_cnt_shift = %du,   /* q%d -> 2^%d rad/s counts */" % (X_Q + hw.act_lsb_log2, X_Q, hw.act_lsb_log2))
+    lines.append("    .gyro_max_cnt = INT32_C(%d),  /* full scale, %.6g rad/s */" % (hw.gyro_max_cnt, hw.gyro_max_cnt * 2.0 ** hw.gyro_lsb_log2))
+    act_max = hw.act_max_cnt()
+    lines.append("    .act_max_cnt = INT32_C(%d),  /* %.6g rad/s hardware clip */" % (act_max, act_max * 2.0 ** hw.act_lsb_log2))
+    _scalar(lines, "bdot_max_q29", hw.bdot_max, X_Q, " rad/s")
+    _scalar(lines, "bdot_hw_q29", hw.bdot_hw, X_Q, " rad/s")
     qs = {}
     for field, key in (("phi0", "Phi0"), ("phik", "Phi_kappa"), ("gam0", "Gam0"), ("gamk", "Gam_kappa"),
                        ("d", "D"), ("w", "W")):
@@ -98,12 +125,12 @@ def table_c(name, sym, tab):
     lines.append("    .p0_q30 = {%s}," % ", ".join("INT32_C(%d)" % v for v in p0))
     lines.append("    .qd_q30 = {%s},  /* floored at 4 LSB */" % ", ".join("INT32_C(%d)" % v for v in qd))
     lines.append("    .r_q30 = INT32_C(%d),  /* %.6g, gyro variance / S_w^2 */" % (r, r / 2.0 ** P_Q))
-    lines.append("    .p_floor_q30 = INT32_C(%d),  /* %.6g */" % (P_FLOOR, P_FLOOR / 2.0 ** P_Q))
-    _scalar(lines, "p_ceil_q30", P_CEIL, P_Q)
+    lines.append("    .p_floor_q30 = INT32_C(%d),  /* %.6g */" % (hw.p_floor, hw.p_floor / 2.0 ** P_Q))
+    _scalar(lines, "p_ceil_q30", hw.p_ceil, P_Q)
     for k in ("n_lost", "n_good", "n_sat", "n_gap_max"):
-        lines.append("    .%s = %du," % (k, FAULT[k]))
-    _scalar(lines, "d2_max_q16", FAULT["d2_max"], D2_Q)
-    lines.append("    .d2_reject = %du," % FAULT["d2_reject"])
+        lines.append("    .%s = %du," % (k, getattr(hw, k)))
+    _scalar(lines, "d2_max_q16", hw.d2_max, D2_Q)
+    lines.append("    .d2_reject = %du," % hw.d2_reject)
     lines.append("    .revision = 1u,")
     lines.append("};")
     return "\n".join(lines) + "\n"

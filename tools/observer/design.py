@@ -107,13 +107,16 @@ def _figures(des, with_j=True):
     return fig
 
 
-def flight_table(name, sigma, h, des, estimator="EKF", s_exp=S_EXP):
-    fo = m.FirstOrder(sigma, h)
+def flight_table(name, sigma, h, des, estimator="EKF", s_exp=S_EXP, J=m.J0, k2_design=m.K2_DESIGN,
+                 kappa_init=KAPPA_INIT, band=BAND, sigma_gyro=0.0, figures=True):
+    """One flight table (dict): model, gains `des` (designed at k2_design and platform inertia J),
+    EKF tuning; figures=False skips the design figures (JSON only, slow)."""
+    fo = m.FirstOrder(sigma, h, J)
     tab = {
         "table": name, "sigma": sigma, "model": "M-phys" if sigma > 0 else "M-paper",
         "period_us": int(round(h * 1e6)), "h": h, "estimator": estimator,
-        "k2_design": m.K2_DESIGN, "K_ref": m.K_REF, "kappa0": fo.kappa0, "kappa_init": KAPPA_INIT,
-        "kappa_band": list(BAND),
+        "k2_design": k2_design, "K_ref": m.K_REF, "kappa0": fo.kappa0, "kappa_init": kappa_init,
+        "kappa_band": list(band),
         "targets_z_controller": [[z.real, z.imag] for z in des["zc"]],
         "targets_z_observer": [[z.real, z.imag] for z in des["zo"]],
         "matrices": {
@@ -121,9 +124,11 @@ def flight_table(name, sigma, h, des, estimator="EKF", s_exp=S_EXP):
             "Gam0": mat_entry(fo.Gam0), "Gam_kappa": mat_entry(fo.Gamk),
             "D": mat_entry(des["D"]), "W": mat_entry(_w7(des["W6"])),
         },
-        "ekf": ekf_tables(s_exp=s_exp),
-        "figures": _figures(des),
+        "ekf": ekf_tables(kappa_init=kappa_init, sigma_gyro=sigma_gyro, s_exp=s_exp),
+        "figures": _figures(des) if figures else {},
     }
+    if J != m.J0:
+        tab["J"] = J
     return tab
 
 

@@ -31,20 +31,33 @@ PAYLOAD_BYTES = 646
 NX, NZ, NU, NY = 6, 7, 2, 2
 EST = {"OBS_EST_EKF": 0, "OBS_EST_CONST_W": 2}
 
-# (obs_params_t field, struct code, count) in wire order (fsw/app/fsw_obs_table.c header comment)
+I32MAX = 2 ** 31 - 1
+
+# (obs_params_t field, struct code, count[, lo, hi]) in wire order (fsw/app/fsw_obs_table.c header
+# comment), with the flight loader's limits (OBS_LIMS of fsw/observer/obs_table.c) where it has
+# any: every scalar and the ls/p0/qd vectors; matrix entries span the whole int32 range.
 PAYLOAD = [
-    ("period_us", "I", 1), ("estimator", "B", 1), ("gyro_cnt_shift", "B", 1), ("act_cnt_shift", "B", 1),
-    ("d2_reject", "B", 1), ("sigma", "i", 1), ("gyro_max_cnt", "i", 1), ("act_max_cnt", "i", 1),
-    ("bdot_max_q29", "i", 1), ("bdot_hw_q29", "i", 1),
-    ("q_phi0", "B", 1), ("q_phik", "B", 1), ("q_gam0", "B", 1), ("q_gamk", "B", 1), ("q_d", "B", 1), ("q_w", "B", 1),
-    ("n_lost", "H", 1), ("n_good", "H", 1), ("n_sat", "H", 1), ("n_gap_max", "H", 1),
-    ("kappa0_q28", "i", 1), ("kappa_init_q28", "i", 1), ("kappa_lo_q28", "i", 1), ("kappa_hi_q28", "i", 1),
-    ("r_q30", "i", 1), ("p_floor_q30", "i", 1), ("p_ceil_q30", "i", 1), ("d2_max_q16", "i", 1),
-    ("ls", "i", NZ), ("p0_q30", "i", NZ), ("qd_q30", "i", NZ),
+    ("period_us", "I", 1, 1000, 1_000_000), ("estimator", "B", 1, 0, 2), ("gyro_cnt_shift", "B", 1, 0, 29),
+    ("act_cnt_shift", "B", 1, 0, 29), ("d2_reject", "B", 1, 0, 1), ("sigma", "i", 1, -1, 1),
+    ("gyro_max_cnt", "i", 1, 1, I32MAX), ("act_max_cnt", "i", 1, 1, I32MAX),
+    ("bdot_max_q29", "i", 1, 1, I32MAX), ("bdot_hw_q29", "i", 1, 1, I32MAX),
+    ("q_phi0", "B", 1, 16, 40), ("q_phik", "B", 1, 16, 40), ("q_gam0", "B", 1, 16, 40), ("q_gamk", "B", 1, 16, 40),
+    ("q_d", "B", 1, 16, 40), ("q_w", "B", 1, 16, 40),
+    ("n_lost", "H", 1, 1, 65535), ("n_good", "H", 1, 1, 65535), ("n_sat", "H", 1, 1, 65535),
+    ("n_gap_max", "H", 1, 1, 65535),
+    ("kappa0_q28", "i", 1, 1, I32MAX), ("kappa_init_q28", "i", 1, 1, I32MAX), ("kappa_lo_q28", "i", 1, 1, I32MAX),
+    ("kappa_hi_q28", "i", 1, 1, I32MAX),
+    ("r_q30", "i", 1, 1, I32MAX), ("p_floor_q30", "i", 1, 1, I32MAX), ("p_ceil_q30", "i", 1, 1, I32MAX),
+    ("d2_max_q16", "i", 1, 1, I32MAX),
+    ("ls", "i", NZ, -40, 40), ("p0_q30", "i", NZ, 1, I32MAX), ("qd_q30", "i", NZ, 4, I32MAX),
     ("phi0", "i", NX * NX), ("phik", "i", NX * NX), ("gam0", "i", NX * NU), ("gamk", "i", NX * NU),
     ("d", "i", NU * NX), ("w", "i", NZ * NY),
 ]
-LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES)
+# value[a] + margin <= value[b] (OBS_RELS)
+RELS = [("bdot_max_q29", "bdot_hw_q29", 0), ("kappa_lo_q28", "kappa_hi_q28", 1), ("kappa_lo_q28", "kappa0_q28", 0),
+        ("kappa0_q28", "kappa_hi_q28", 0), ("kappa_lo_q28", "kappa_init_q28", 0),
+        ("kappa_init_q28", "kappa_hi_q28", 0), ("p_floor_q30", "p_ceil_q30", 1)]
+LAYOUT = image_writer.Layout(TABLE_ID, LAYOUT_VERSION, PAYLOAD, PAYLOAD_BYTES, RELS, "fsw/observer/obs_table.c")
 FIELDS = LAYOUT.fields
 NAMES = [name for name, _ in ctable.TABLES]
 
@@ -58,19 +71,19 @@ def _tables():
     return _TABS
 
 
-def _from_design(tab):
-    """The integers of ctable.table_c, from the same constants and helpers."""
+def _from_design(tab, hw=ctable.HW):
+    """The integers of ctable.table_c, from the same constants and helpers (hw: ctable.Hw)."""
     mat, ekf = tab["matrices"], tab["ekf"]
     p = {
         "period_us": int(tab["period_us"]),
         "estimator": EST["OBS_EST_EKF" if tab["estimator"] == "EKF" else "OBS_EST_CONST_W"],
         "sigma": int(tab["sigma"]),
-        "gyro_cnt_shift": ctable.X_Q + ctable.GYRO_LSB_LOG2,
-        "act_cnt_shift": ctable.X_Q + ctable.ACT_LSB_LOG2,
-        "gyro_max_cnt": ctable.GYRO_MAX_CNT,
-        "act_max_cnt": int(ctable.BDOT_HW * 2.0 ** -ctable.ACT_LSB_LOG2),
-        "bdot_max_q29": ctable.q_int(ctable.BDOT_MAX, ctable.X_Q),
-        "bdot_hw_q29": ctable.q_int(ctable.BDOT_HW, ctable.X_Q),
+        "gyro_cnt_shift": ctable.X_Q + hw.gyro_lsb_log2,
+        "act_cnt_shift": ctable.X_Q + hw.act_lsb_log2,
+        "gyro_max_cnt": hw.gyro_max_cnt,
+        "act_max_cnt": hw.act_max_cnt(),
+        "bdot_max_q29": ctable.q_int(hw.bdot_max, ctable.X_Q),
+        "bdot_hw_q29": ctable.q_int(hw.bdot_hw, ctable.X_Q),
     }
     for field, key in (("phi0", "Phi0"), ("phik", "Phi_kappa"), ("gam0", "Gam0"), ("gamk", "Gam_kappa"),
                        ("d", "D"), ("w", "W")):
@@ -87,12 +100,12 @@ def _from_design(tab):
         p["p0_q30"] = [int(v) for v in ekf["P0_scaled_int32"]]
         p["qd_q30"] = [int(v) for v in ekf["Q_scaled_int32"]]
         p["r_q30"] = int(ekf["R_scaled_int32"][0])
-    p["p_floor_q30"] = ctable.P_FLOOR
-    p["p_ceil_q30"] = ctable.q_int(ctable.P_CEIL, ctable.P_Q)
+    p["p_floor_q30"] = hw.p_floor
+    p["p_ceil_q30"] = ctable.q_int(hw.p_ceil, ctable.P_Q)
     for k in ("n_lost", "n_good", "n_sat", "n_gap_max"):
-        p[k] = int(ctable.FAULT[k])
-    p["d2_max_q16"] = ctable.q_int(ctable.FAULT["d2_max"], ctable.D2_Q)
-    p["d2_reject"] = int(ctable.FAULT["d2_reject"])
+        p[k] = int(getattr(hw, k))
+    p["d2_max_q16"] = ctable.q_int(hw.d2_max, ctable.D2_Q)
+    p["d2_reject"] = int(hw.d2_reject)
     return p
 
 
@@ -117,18 +130,23 @@ def parse_initialiser(text):
     return out
 
 
-def params(name):
-    """Raw integer fields of boot table NAME, checked against ctable's rendered initialiser."""
-    if name not in NAMES:
-        raise SystemExit("image: unknown table %r; choose from %s" % (name, ", ".join(NAMES)))
-    tab = _tables()[name]
-    p = _from_design(tab)
-    c_init = parse_initialiser(ctable.table_c(name, dict(ctable.TABLES)[name], tab))
+def params_of(name, tab, hw=ctable.HW, sym="OBS_TBL"):
+    """Raw integer fields of design table `tab` (design.py's dict, _clean'ed) with hardware fields hw,
+    checked against the initialiser ctable.table_c renders from the same inputs."""
+    p = _from_design(tab, hw)
+    c_init = parse_initialiser(ctable.table_c(name, sym, tab, hw))
     c_init.pop("revision", None)
     if set(c_init) != set(FIELDS) or any(c_init[k] != p[k] for k in FIELDS):
         bad = sorted(k for k in set(c_init) | set(FIELDS) if c_init.get(k) != p.get(k))
         raise AssertionError("image: %s differs from ctable's initialiser in %s" % (name, bad))
     return p
+
+
+def params(name):
+    """Raw integer fields of boot table NAME, checked against ctable's rendered initialiser."""
+    if name not in NAMES:
+        raise SystemExit("image: unknown table %r; choose from %s" % (name, ", ".join(NAMES)))
+    return params_of(name, _tables()[name], sym=dict(ctable.TABLES)[name])
 
 
 def build(name, revision=1, sets=None):

@@ -1,1 +1,2 @@
-"""Parameter-table image writer (image_writer) and the loader's test-image oracle (mktable)."""
+"""Parameter-table image writer (image_writer, with the flight loaders' limits), the loader's test-image oracle
+(mktable) and mission configuration files (config: YAML + pydantic schema, clear errors)."""

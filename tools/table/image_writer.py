@@ -21,16 +21,30 @@ HDR = struct.Struct("<HHIII")
 HDR_FIELDS = ("table_id", "layout_version", "length", "revision", "crc")
 
 
+def q_rat(num, den, q):
+    """FX_Q_RAT(num, den, q) of fsw/fx/fx.h: num/den in qN, rounded half away from zero."""
+    sign = -1 if num < 0 else 1
+    return sign * ((abs(num) * (1 << q) + den // 2) // den)
+
+
 class Layout(object):
-    def __init__(self, table_id, layout_version, payload, payload_bytes):
+    """payload: (field, struct code, count) or (field, struct code, count, lo, hi) entries in wire
+    order; lo/hi are the flight loader's limits for every entry of the field (its limits
+    descriptor), absent where the loader range-checks nothing. rels: (a, b, margin) meaning
+    value[a] + margin <= value[b] (the descriptor's relations). source names the C file they mirror."""
+
+    def __init__(self, table_id, layout_version, payload, payload_bytes, rels=(), source=""):
         self.table_id = table_id
         self.layout_version = layout_version
-        self.payload = payload
-        self.struct = struct.Struct("<" + "".join("%d%s" % (n, c) for _, c, n in payload))
+        self.payload = [tuple(e[:3]) for e in payload]
+        self.limits = {e[0]: (e[3], e[4]) for e in payload if len(e) == 5}
+        self.rels = list(rels)
+        self.source = source
+        self.struct = struct.Struct("<" + "".join("%d%s" % (n, c) for _, c, n in self.payload))
         if self.struct.size != payload_bytes:
             raise AssertionError("image layout packs to %d bytes, not %d" % (self.struct.size, payload_bytes))
         self.payload_bytes = payload_bytes
-        self.fields = {f: (c, n) for f, c, n in payload}
+        self.fields = {f: (c, n) for f, c, n in self.payload}
 
     def apply_sets(self, p, hdr, sets):
         """Apply --set overrides to the params dict p and the header override dict hdr."""
@@ -60,6 +74,46 @@ class Layout(object):
                     raise SystemExit("image: --set %r: index out of range for %s (%d entries)" % (s, f, n))
                 p[f] = list(p[f])
                 p[f][i] = v
+
+    def check_limits(self, p, sources=None):
+        """Problems of params dict p against the flight loader's per-field limits and relations
+        (one line each, naming the field, its value and the allowed range); [] if it would pass.
+        sources: {field: (configuration keys it comes from)} for the messages."""
+        out = []
+        src = (" (%s)" % self.source) if self.source else ""
+        sources = sources or {}
+        frm = lambda f: ("; derived from %s" % ", ".join(sources[f])) if f in sources else ""
+        for f, _, n in self.payload:
+            if f not in self.limits:
+                continue
+            lo, hi = self.limits[f]
+            vals = list(p[f]) if n > 1 else [p[f]]
+            for i, v in enumerate(vals):
+                if not lo <= v <= hi:
+                    out.append("table field %s%s = %d is outside the flight loader's limits [%d, %d]%s%s"
+                               % (f, ("[%d]" % i) if n > 1 else "", v, lo, hi, src, frm(f)))
+        for a, b, margin in self.rels:
+            if p[a] + margin > p[b]:
+                out.append("table fields %s = %d and %s = %d break the flight loader's relation %s%s <= %s%s%s"
+                           % (a, p[a], b, p[b], a, (" + %d" % margin) if margin else "", b, src, frm(a)))
+        return out
+
+    def descriptor_text(self):
+        """The limits descriptor this layout mirrors, in the format of tests/common/tbl_desc_dump.c
+        (the C descriptor printed by the flight build): a text diff proves the mirror exact."""
+        ftype = {"B": 1, "H": 2, "I": 3, "i": 4}
+        lims, index = [], {}
+        off = 0
+        for f, c, n in self.payload:
+            size = struct.calcsize("<" + c)
+            if f in self.limits:
+                index[f] = len(lims)
+                lims += ["lim %d %d %d %d" % (off + k * size, ftype[c], self.limits[f][0], self.limits[f][1])
+                         for k in range(n)]
+            off += n * size
+        rels = ["rel %d %d %d" % (index[a], index[b], m) for a, b, m in self.rels]
+        head = "desc %d %d %d %d %d" % (self.table_id, self.layout_version, self.payload_bytes, len(lims), len(rels))
+        return "\n".join([head] + lims + rels) + "\n"
 
     def pack_payload(self, p):
         flat = []
