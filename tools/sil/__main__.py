@@ -31,10 +31,10 @@ def main(argv=None):
         from . import gen_tlm_rdv
         return gen_tlm_rdv.main(a.check)
     if a.cmd == "report":
-        from . import report_rdv
+        from tools.impulse import report as report_rdv
         if report_rdv.is_rdv_log(a.log, a.lcm_py):
             return report_rdv.main(a)
-        from . import report
+        from tools.observer import report
         return report.main(a)
     from . import compare
     return compare.main(a)

@@ -14,9 +14,9 @@ import re
 
 import numpy as np
 
-from . import lcmio
-from . import tlm as tlmmod
-from .tlm import ROOT
+from tools.sil import lcmio
+from tools.sil import tlm as tlmmod
+from tools.sil.tlm import ROOT
 
 DEG = math.pi / 180.0
 LSB = 2.0 ** -20          # rad/s per gyro / gimbal-rate count

@@ -13,8 +13,8 @@ import os
 
 import numpy as np
 
-from . import lcmio
-from .tlm import Layout, ROOT
+from tools.sil import lcmio
+from tools.sil.tlm import Layout, ROOT
 
 FORMATS_RDV = os.path.join(ROOT, "fsw", "app", "fsw_tlm_formats_rdv.json")
 RDV_LAYOUT = 0x00020001
