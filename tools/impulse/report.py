@@ -1,155 +1,202 @@
-"""Run report of one rendezvous SIL log (spec 50 §7): summary and plots.
+"""Report of one RENDEZVOUS (impulse scheduler) SIL log (spec 50 §7): summary and plots. Called
+by `python -m tools.sil report LOG --out DIR [--summary S.json]` (tools/sil/report.py finds this
+module from the log's telemetry layout and writes the files).
 
-    python -m tools.sil report LOG --out DIR       (dispatched here for a RENDEZVOUS log)
+Plots: DIR/{trajectory,cyclogram,miss}.png, always from the log.
 
-Writes DIR/summary.txt, DIR/summary.json and DIR/{trajectory,cyclogram,miss}.png.
-Truth (GNC_TRUTH of the CW plant, sim/impulse/cw_sil_plant.hpp) gives the terminal miss and the
-delta-v; the flight telemetry (layout fsw_tlm_formats_rdv.json) gives the plans, iterations and
-the predicted miss; GNC_CMD gives the thruster windows.
+Figures. Truth (GNC_TRUTH of the CW plant, sim/impulse/cw_sil_plant.hpp) gives the terminal miss
+and the delta-v; the flight telemetry (the mission's layout, tools.iface) the plans, iterations,
+flags and the predicted miss; GNC_CMD the thruster windows; GNC_FSW_CMD the START command (t0,
+t_f). Computed as the live metrics do (hil_host/missions/impulse/imp_metrics.cpp): with
+--summary those (SUMMARY_KEYS) are the run summary's; thrust factors, residuals, the
+per-thruster delta-v and the predicted miss are the log's alone.
 """
-import json
 import math
 import os
 
 import numpy as np
 
-from tools.sil import lcmio
-from tools.sil.tlm import Layout, ROOT
+from tools.sil.report import Key, read_log
 
-FORMATS_RDV = os.path.join(ROOT, "fsw", "app", "fsw_tlm_formats_rdv.json")
-RDV_LAYOUT = 0x00020001
-THR = ["+x", "-x", "+y", "-y", "+z", "-z"]
-IMP_MODES = ["IDLE", "PLANNING", "ARMED", "FIRING", "FINAL", "DONE", "INFEASIBLE", "NO_SOLUTION", "ABORTED",
-             "FAULT"]
-IMP_FLAGS = [(12, "INFEASIBLE"), (13, "NO_SOLUTION"), (14, "MARGINAL"), (15, "NAV_STALE"), (16, "THRUST_LEVEL"),
-             (17, "EXPECTED_MISS"), (18, "INTERLOCK"), (19, "STUCK_OFF_x"), (20, "STUCK_OFF_y"),
-             (21, "STUCK_OFF_z"), (22, "STUCK_ON_x"), (23, "STUCK_ON_y"), (24, "STUCK_ON_z"), (25, "CMD_REJ")]
+THR = ["+x", "-x", "+y", "-y", "+z", "-z"]   # thruster j (fsw/impulse/imp_iface.py THR: px mx py my pz mz)
+AXES = "xyz"                                  # axis r of the STUCK_OFF / STUCK_ON health fields
+ACT_MASK = 12                                 # actuator channel of the on-mask (imp_iface actuators)
+
+# The run summary's figures of this mission (imp_metrics.cpp) <-> this report's; the scheduler's
+# last telemetry (fsw_imp_*) comes with tools.sil.report.CORE_KEYS' "fsw.*". All are the same
+# definitions on the same doubles, so all are exact.
+SUMMARY_KEYS = [
+    Key("miss_r_m", "miss_r_m", optional=True),        # |R| at t_f (truth seq == t_f step)
+    Key("miss_v_mps", "miss_v_mps", optional=True),
+    Key("dv_used_mps", "dv_used_mps"),                 # sum over the thrusters, in thruster order
+    Key("iterations_max.xy", "max_iters_xy"),
+    Key("iterations_max.z", "max_iters_z"),
+    Key("interlock_violations", "interlock_violations"),
+    Key("tf_step", "t_f_step"),
+    Key("thruster_on_steps", "thruster_on_steps"),      # GNC_CMD messages with any thruster on
+    Key("imp_health_or", "imp_health_sticky"),          # OR of imp_health over the run
+    Key("t_first_s.*", "t_first_*"),                   # first telemetry time of each flag / mode
+]
 
 
-def is_rdv_log(path, lcm_py=None):
-    """True when the log's flight telemetry is the RENDEZVOUS layout."""
-    gnc = lcmio.load_types(lcm_py)
-    for _, ch, data in lcmio.events(path):
-        if ch == "GNC_TLM":
-            return gnc.fsw_tlm_frame_t.decode(data).tlm_layout_version == RDV_LAYOUT
-    return False
+def _modes(mission):
+    for e in mission.iface.enums:
+        if e.name == "mode":
+            return e.by_value()
+    return {}
 
 
-def read(path, lcm_py=None):
-    gnc = lcmio.load_types(lcm_py)
-    lay = Layout(FORMATS_RDV)
-    tru, cmd, tlm, fcmd = {}, {}, {}, []
-    n = {}
-    for _, ch, data in lcmio.events(path):
-        n[ch] = n.get(ch, 0) + 1
-        if ch == "GNC_TRUTH":
-            m = gnc.sim_truth_t.decode(data)
-            tru[m.seq] = (m.utime * 1e-6,) + tuple(m.state[:14]) + tuple(m.extra[:3])
-        elif ch == "GNC_CMD":
-            m = gnc.actuator_cmd_t.decode(data)
-            cmd[m.seq] = (m.utime * 1e-6, m.counts[12], m.fsw_mode, m.fsw_health) + tuple(m.counts[0:12])
-        elif ch == "GNC_TLM":
-            m = gnc.fsw_tlm_frame_t.decode(data)
-            if m.tlm_layout_version == RDV_LAYOUT:
-                tlm[m.seq] = bytes(m.tlm[:m.tlm_len])
-        elif ch == "GNC_FSW_CMD":
-            m = gnc.fsw_cmd_t.decode(data)
-            fcmd.append(dict(utime=m.utime, apply_seq=m.apply_seq, cmd=m.cmd, args=list(m.args)))
+def flag_names(mission, word):
+    """The scheduler's health flags set in word: single bits by name, the per-axis fields as
+    NAME_<axis>; the MODE field (the scheduler mode, not a flag) left out."""
+    out = []
+    for b in mission.iface.health:
+        if b.name == "MODE":
+            continue
+        v = (int(word) & b.mask) >> b.shift
+        if b.single:
+            out += [b.name] if v else []
+        else:
+            out += ["%s_%s" % (b.name, AXES[r] if r < len(AXES) else r) for r in range(32) if v >> r & 1]
+    return out
+
+
+def first_keys(mission):
+    """The live metrics' t_first names: each health flag but MODE (mask), then each scheduler
+    mode (value; a mode named like a flag gets _MODE), as imp_metrics.cpp builds them."""
+    flags = [(b.name, b.mask) for b in mission.iface.health if b.name != "MODE"]
+    names = {f for f, _ in flags}
+    modes = {v: (n + "_MODE" if n in names else n) for v, n in _modes(mission).items()}
+    return flags, modes
+
+
+def read(path, lcm_py, mission):
+    start_id = mission.tc_id("START")
+    tru, cmd, fcmd = {}, {}, []
+    on = [0]
+
+    def on_cmd(m):
+        cmd[m.seq] = (m.utime * 1e-6, m.counts[ACT_MASK], m.fsw_mode, m.fsw_health) + tuple(m.counts[0:12])
+        if m.n_counts > ACT_MASK and m.counts[ACT_MASK] != 0:
+            on[0] += 1
+
+    C = read_log(path, lcm_py, mission, {
+        "GNC_TRUTH": lambda m: tru.__setitem__(m.seq, (m.utime * 1e-6,) + tuple(m.state[:14]) + tuple(m.extra[:3])),
+        "GNC_CMD": on_cmd,
+        "GNC_FSW_CMD": lambda m: fcmd.append(dict(utime=m.utime, apply_seq=m.apply_seq, cmd=m.cmd, args=list(m.args))),
+    })
     seqs = sorted(tru)
     T = np.array([tru[s] for s in seqs]) if seqs else np.zeros((0, 18))
     cs = sorted(cmd)
-    C = np.array([cmd[s] for s in cs]) if cs else np.zeros((0, 16))
-    ts = sorted(tlm)
-    raw = lay.decode_many([tlm[s] for s in ts]) if ts else None
-    return dict(seq=np.array(seqs), T=T, cseq=np.array(cs), C=C, tseq=np.array(ts), raw=raw,
-                real=lay.scaled_many(raw) if raw is not None else None, counts=n, commands=fcmd)
+    Cm = np.array([cmd[s] for s in cs]) if cs else np.zeros((0, 16))
+    L = C["tlm"]
+    return dict(common=C, seq=np.array(seqs), T=T, cseq=np.array(cs), C=Cm, thruster_on_msgs=on[0],
+                tseq=L["seq"] if L else np.zeros(0), tutime=L["utime"] if L else np.zeros(0),
+                raw=L["raw"] if L else None, real=L["real"] if L else None,
+                start=[c for c in fcmd if c["cmd"] == start_id])
 
 
-def metrics(R):
+def metrics(R, mission, m):
+    """Adds the scheduler's figures, all derived from the log, to m (tools.sil's common ones)."""
     T, raw = R["T"], R["raw"]
-    m = {}
     omega = float(T[0, 15]) if len(T) else 1.131367e-3
     a_nom = float(T[0, 16]) if len(T) else 0.04
     L, V = a_nom / omega ** 2, a_nom / omega
-    start = [c for c in R["commands"] if c["cmd"] == 2]
+    start = R["start"]
     tf = start[0]["args"][1] if start else None
     t0 = start[0]["args"][0] if start else None
     m.update(omega_radps=omega, a_nom_mps2=a_nom, length_unit_m=L, velocity_unit_mps=V, t0_step=t0, tf_step=tf)
     if tf is not None and tf in set(R["seq"].tolist()):
-        i = int(np.where(R["seq"] == tf)[0][0])
-        x = T[i, 1:7]
-        m["miss_r_m"] = float(math.sqrt(x[0] ** 2 + x[2] ** 2 + x[4] ** 2))
-        m["miss_v_mps"] = float(math.sqrt(x[1] ** 2 + x[3] ** 2 + x[5] ** 2))
+        x = T[int(np.where(R["seq"] == tf)[0][0]), 1:7]
+        m["miss_r_m"] = math.sqrt(x[0] * x[0] + x[2] * x[2] + x[4] * x[4])
+        m["miss_v_mps"] = math.sqrt(x[1] * x[1] + x[3] * x[3] + x[5] * x[5])
         m["miss_m"] = [float(x[0]), float(x[2]), float(x[4])]
         m["miss_mps"] = [float(x[1]), float(x[3]), float(x[5])]
     if len(T):
-        dv = T[-1, 7:13]
-        m["dv_used_mps"] = float(dv.sum())
-        m["dv_per_thruster_mps"] = {THR[j]: float(dv[j]) for j in range(6)}
+        dv = [float(v) for v in T[-1, 7:13]]
+        s = 0.0
+        for v in dv:            # in thruster order, as the live metrics add them
+            s += v
+        m["dv_used_mps"] = s
+        m["dv_per_thruster_mps"] = {THR[j]: dv[j] for j in range(6)}
         m["interlock_violations"] = int(T[-1, 13])
         m["short_burns"] = int(T[-1, 14])
+    m["thruster_on_steps"] = R["thruster_on_msgs"]
     if raw is not None:
         last = {k: int(v[-1]) for k, v in raw.items()}
-        m["plans"] = last["imp_plans"]
-        for k in ("plans_failed", "plans_late", "plans_skipped", "plans_kept", "cmd_rej", "nav_rej", "cal_rej"):
-            m[k] = last["imp_" + k]
-        m["iterations_last"] = {"xy": last["imp_iters_xy"], "z": last["imp_iters_z"]}
+        names = _modes(mission)
+        for k in ("plans", "plans_failed", "plans_late", "plans_skipped", "plans_kept", "cmd_rej", "nav_rej",
+                  "cal_rej", "mode", "rej_reason", "iters_xy", "iters_z", "how_xy", "how_z", "pattern", "fres_xy",
+                  "fres_z", "stuck_j"):
+            m["fsw"]["imp_" + k] = last["imp_" + k]
         m["iterations_max"] = {"xy": int(raw["imp_iters_xy"].max()), "z": int(raw["imp_iters_z"].max())}
-        m["final_residual_lsb"] = {"xy": last["imp_fres_xy"], "z": last["imp_fres_z"]}
-        m["imp_mode_final"] = IMP_MODES[last["imp_mode"]] if last["imp_mode"] < len(IMP_MODES) else last["imp_mode"]
-        modes = sorted(set(int(v) for v in raw["imp_mode"]))
-        m["imp_modes_seen"] = [IMP_MODES[v] if v < len(IMP_MODES) else v for v in modes]
-        hs = int(np.bitwise_or.reduce(raw["imp_health"].astype(np.int64)))
-        m["imp_health_sticky"] = "0x%08X" % hs
-        m["imp_flags_seen"] = [nm for b, nm in IMP_FLAGS if hs & (1 << b)]
+        m["imp_mode_final"] = names.get(last["imp_mode"], last["imp_mode"])
+        m["imp_modes_seen"] = [names.get(int(v), int(v)) for v in np.unique(raw["imp_mode"])]
+        h = raw["imp_health"].astype(np.int64)
+        m["imp_health_or"] = int(np.bitwise_or.reduce(h))
+        m["imp_flags_seen"] = flag_names(mission, m["imp_health_or"])
+        # first telemetry time (its utime, s) of each flag and each scheduler mode
+        flags, modes = first_keys(mission)
+        ts = R["tutime"] * 1e-6
         first = {}
-        tsec = R["tseq"] * 0.0 + 0.0
-        if len(T):
-            h = (T[1, 0] - T[0, 0]) if len(T) > 1 else 0.1
-            tsec = R["tseq"] * h
-        for b, nm in IMP_FLAGS:
-            hit = np.nonzero(raw["imp_health"].astype(np.int64) & (1 << b))[0]
+        for nm, mask in flags:
+            hit = np.nonzero(h & mask)[0]
             if len(hit):
-                first[nm] = float(tsec[hit[0]])
-        m["t_first_flag_s"] = first
+                first[nm] = float(ts[hit[0]])
+        mode = raw["imp_mode"].astype(np.int64)
+        for v, nm in modes.items():
+            hit = np.nonzero(mode == v)[0]
+            if len(hit):
+                first[nm] = float(ts[hit[0]])
+        m["t_first_s"] = dict(sorted(first.items(), key=lambda kv: (kv[1], kv[0])))
         m["fx_status_sticky"] = "0x%02X" % (last["imp_st_sticky"] & 0xFF)
         m["alpha_final"] = {THR[j]: float(R["real"]["imp_alpha_" + t][-1])
                             for j, t in enumerate(["px", "mx", "py", "my", "pz", "mz"])}
-        m["fsw_mode_final"] = last["mode"]
-        m["n_safe"] = last["n_safe"]
-        m["n_tc"], m["n_tc_rej"] = last["n_tc"], last["n_tc_rej"]
-    m["messages"] = R["counts"]
     return m
 
 
-def format_summary(m):
-    o = ["Rendezvous SIL report (spec 50 §7)",
-         "  CW, omega %.6e rad/s, a_nom %.3f m/s^2 (length unit %.1f m, velocity unit %.4f m/s)" % (
-             m["omega_radps"], m["a_nom_mps2"], m["length_unit_m"], m["velocity_unit_mps"]),
-         "  t0 step %s, t_f step %s" % (m.get("t0_step"), m.get("tf_step"))]
-    if "miss_r_m" in m:
-        o.append("  terminal miss     |dR| %.4f m, |dV| %.6f m/s  (x, y, z: %s m)" % (
-            m["miss_r_m"], m["miss_v_mps"], ", ".join("%.3f" % v for v in m["miss_m"])))
+def format_summary(m, src):
+    """The scheduler's lines; src.tag(...) marks the log-derived ones when a run summary is in use."""
+    o = ["  CW                omega %.6e rad/s, a_nom %.3f m/s^2 (length unit %.1f m, velocity unit %.4f m/s)%s" % (
+             m["omega_radps"], m["a_nom_mps2"], m["length_unit_m"], m["velocity_unit_mps"], src.tag("omega_radps")),
+         "  START             t0 step %s, t_f step %s%s" % (m.get("t0_step"), m.get("tf_step"), src.tag("t0_step", "tf_step"))]
+    if "miss_r_m" in m and m["miss_r_m"] >= 0:
+        o.append("  terminal miss     |dR| %.4f m, |dV| %.6f m/s%s" % (m["miss_r_m"], m["miss_v_mps"],
+                                                                     src.tag("miss_r_m", "miss_v_mps")))
+        if "miss_m" in m:
+            o.append("                    x, y, z: %s m%s" % (", ".join("%.3f" % v for v in m["miss_m"]), src.tag("miss_m")))
     else:
         o.append("  terminal miss     (no truth sample at t_f)")
     if "dv_used_mps" in m:
-        o.append("  delta-v used      %.4f m/s  (%s)" % (m["dv_used_mps"], ", ".join(
-            "%s %.3f" % (k, v) for k, v in m["dv_per_thruster_mps"].items())))
-        o.append("  interlock violations %d, short burns %d" % (m["interlock_violations"], m["short_burns"]))
-    if "plans" in m:
-        o.append("  plans             %d (failed %d, late %d, skipped %d, kept %d); cmd_rej %d, nav_rej %d, cal_rej %d" % (
-            m["plans"], m["plans_failed"], m["plans_late"], m["plans_skipped"], m["plans_kept"], m["cmd_rej"],
-            m["nav_rej"], m["cal_rej"]))
-        o.append("  iterations        last x-y %d, z %d; max x-y %d, z %d; final |F| %d / %d LSB" % (
-            m["iterations_last"]["xy"], m["iterations_last"]["z"], m["iterations_max"]["xy"],
-            m["iterations_max"]["z"], m["final_residual_lsb"]["xy"], m["final_residual_lsb"]["z"]))
-        o.append("  scheduler modes   %s; final %s" % (" ".join(str(x) for x in m["imp_modes_seen"]), m["imp_mode_final"]))
-        o.append("  health sticky     %s %s" % (m["imp_health_sticky"], " ".join(m["imp_flags_seen"])))
-        o.append("  first flags [s]   %s" % (", ".join("%s %.1f" % kv for kv in m["t_first_flag_s"].items()) or "none"))
-        o.append("  thrust factors    %s" % ", ".join("%s %.4f" % kv for kv in m["alpha_final"].items()))
-        o.append("  fx status sticky  %s; SAFE entries %d; telecommands %d taken, %d refused" % (
-            m["fx_status_sticky"], m["n_safe"], m["n_tc"], m["n_tc_rej"]))
-    o.append("  messages          %s" % ", ".join("%s %d" % kv for kv in sorted(m["messages"].items())))
+        o.append("  delta-v used      %.4f m/s%s" % (m["dv_used_mps"], src.tag("dv_used_mps")))
+        if "dv_per_thruster_mps" in m:
+            o.append("                    %s%s" % (", ".join("%s %.3f" % kv for kv in m["dv_per_thruster_mps"].items()),
+                                                  src.tag("dv_per_thruster_mps")))
+        o.append("  interlock viol.   %d; thruster-on steps %d%s" % (m["interlock_violations"], m["thruster_on_steps"],
+                                                                     src.tag("interlock_violations", "thruster_on_steps")))
+        if "short_burns" in m:
+            o.append("  short burns       %d%s" % (m["short_burns"], src.tag("short_burns")))
+    if "imp_health_or" in m:
+        f = m["fsw"]
+        o.append("  plans             %d (failed %d, late %d, skipped %d, kept %d); cmd_rej %d, nav_rej %d, cal_rej %d%s" % (
+            f["imp_plans"], f["imp_plans_failed"], f["imp_plans_late"], f["imp_plans_skipped"], f["imp_plans_kept"],
+            f["imp_cmd_rej"], f["imp_nav_rej"], f["imp_cal_rej"], src.tag("fsw.imp_plans", "fsw.imp_cal_rej")))
+        o.append("  iterations        last x-y %d, z %d; max x-y %d, z %d%s" % (
+            f["imp_iters_xy"], f["imp_iters_z"], m["iterations_max"]["xy"], m["iterations_max"]["z"],
+            src.tag("fsw.imp_iters_xy", "iterations_max.xy", "iterations_max.z")))
+        o.append("  final |F|         %d / %d LSB%s" % (f["imp_fres_xy"], f["imp_fres_z"], src.tag("fsw.imp_fres_xy")))
+        modes = _modes(src.mission)
+        o.append("  scheduler modes   %s; final %s%s" % (" ".join(str(x) for x in m["imp_modes_seen"]),
+                                                         modes.get(f["imp_mode"], f["imp_mode"]), src.tag("imp_modes_seen")))
+        hs = m["imp_health_or"]
+        o.append("  health OR         0x%08X %s%s" % (hs, " ".join(flag_names(src.mission, hs)) or "(no flag)",
+                                                      src.tag("imp_health_or")))
+        tf = m.get("t_first_s", {})
+        o.append("  first seen [s]    %s%s" % (", ".join("%s %.1f" % kv for kv in sorted(tf.items(), key=lambda kv: (kv[1], kv[0])))
+                                               or "none", src.tag(*("t_first_s." + k for k in tf))))
+        o.append("  thrust factors    %s%s" % (", ".join("%s %.4f" % kv for kv in m["alpha_final"].items()),
+                                               src.tag("alpha_final")))
+        o.append("  fx status sticky  %s%s" % (m["fx_status_sticky"], src.tag("fx_status_sticky")))
     return "\n".join(o) + "\n"
 
 
@@ -229,21 +276,3 @@ def plots(R, m, out):
         plt.close(fig)
         paths.append(p)
     return paths
-
-
-def main(args):
-    R = read(args.log, args.lcm_py)
-    m = metrics(R)
-    os.makedirs(args.out, exist_ok=True)
-    text = format_summary(m)
-    print(text, end="")
-    with open(os.path.join(args.out, "summary.txt"), "w") as fh:
-        fh.write(text)
-    js = json.dumps(m, indent=1) + "\n"
-    for p in [os.path.join(args.out, "summary.json")] + ([args.json] if args.json else []):
-        with open(p, "w") as fh:
-            fh.write(js)
-    if not args.no_plots:
-        for p in plots(R, m, args.out):
-            print("wrote %s" % p)
-    return 0

@@ -1,161 +1,82 @@
-"""Run report of one SIL log: settling metrics, faults seen, plots (10-observer §6, §7).
+"""Report of one DETUMBLE (observer) SIL log: settling metrics, estimate errors, faults, plots
+(10-observer §6, §7). Called by `python -m tools.sil report LOG --out DIR [--summary S.json]`
+(tools/sil/report.py finds this module from the log's telemetry layout and writes the files).
 
-    python -m tools.sil report LOG --out DIR [--lcm-py DIR] [--json FILE]
+Plots: DIR/{rates,mu,khat,gimbal,innov}.png, always from the log.
 
-Writes DIR/summary.txt, DIR/summary.json and DIR/{rates,mu,khat,gimbal,innov}.png.
-Truth (GNC_TRUTH) gives the metrics, exactly as tests/observer/test_obs_closed_loop_host.c:
-t = utime of the truth sample, t_s = last t with |w| >= 0.01 deg/s plus h, t_s+ = last t with
-|w| >= 0.01 deg/s or max(|mu_y|, |mu_z|) >= 0.01 deg, plus h (0 if never above).
+Figures. The truth (GNC_TRUTH) gives the settling metrics, computed as the live metrics do
+(hil_host/missions/observer/obs_metrics.cpp) so that both agree to the bit: t = utime of the
+truth sample, h = the truth sample spacing, |w| = hypot(w_y / deg, w_z / deg); t_s = last t with
+|w| >= 0.01 deg/s plus h, t_s+ = last t with |w| >= 0.01 deg/s or max(|mu_y|, |mu_z|) >= 0.01 deg,
+plus h (0 if never above); the tail is t >= T_end - 20 s, T_end = end of the last step. With
+--summary those (SUMMARY_KEYS) are the run summary's; the estimate errors, gimbal angles, K-hat
+band, innovations and sensor flags are the log's alone.
 """
-import json
 import math
 import os
-import re
 
 import numpy as np
 
+from tools.sil.report import Key, bits_str, columns, last_per_seq, mode_name, read_log
 from tools.sil import lcmio
-from tools.sil import tlm as tlmmod
-from tools.sil.tlm import ROOT
 
 DEG = math.pi / 180.0
-LSB = 2.0 ** -20          # rad/s per gyro / gimbal-rate count
+LSB = 2.0 ** -20          # rad/s per gyro / gimbal-rate count (the observer tables' count scale)
 W_THR = 0.01              # deg/s
 MU_THR = 0.01             # deg
+TAIL_S = 20.0             # the "last 20 s" of spec 10 §6
 LS6 = -1                  # table ls[6] of the shipped tables: var(kappa) = pkk * 4^ls6
-PLANT_DIVERGED = 1
-PLANT_RETX = 2
-STATUS_STALE = 1
-STATUS_SAT = 2
-BRIDGE_COUNTERS = ("dups", "stale", "gaps", "rejected", "nonfinite_rej", "range_rej", "missed", "table_rej")
-MODES = {0: "BOOT", 1: "STANDBY", 2: "DETUMBLE", 3: "SAFE"}
-CTL_CMDS = {1: "START", 2: "STOP", 3: "READY", 4: "HEARTBEAT", 5: "SUMMARY"}
-CTL_NODES = {0: "runner", 1: "plant", 2: "bridge", 3: "logger"}
-ACK_RESULTS = {0: "ACCEPTED", 1: "PARTIAL", 2: "REJECTED"}
 # Telemetry x_hat of step k is published after the time update (obs.c: predict, then publish), so
 # it is the prediction x_hat(k+1|k): it is compared with, and plotted at, truth sample k + EST_LAG.
 EST_LAG = 1
 
-
-def _bit_names(header, prefix):
-    """{bit value: NAME} from '#define PREFIXNAME (0x...u)' lines of a C header."""
-    out = {}
-    try:
-        text = open(os.path.join(ROOT, header)).read()
-    except OSError:
-        return out
-    for m in re.finditer(r"#define\s+%s(\w+)\s+\(?\s*(0x[0-9A-Fa-f]+)u?\s*\)?" % prefix, text):
-        out[int(m.group(2), 16)] = m.group(1)
-    return out
-
-
-def bits_str(word, names):
-    word = int(word) & 0xFFFFFFFF
-    parts = []
-    for b in range(32):
-        v = 1 << b
-        if word & v:
-            parts.append(names.get(v, "fx%d" % b if b < 8 else "bit%d" % b))
-    return "0x%08X%s" % (word, (" (" + " ".join(parts) + ")") if parts else "")
+# The run summary's figures of this mission (obs_metrics.cpp) <-> this report's; the module
+# counters (fsw_obs_n_*, fsw_obs_revision) come with tools.sil.report.CORE_KEYS' "fsw.*".
+# All are the same definitions on the same doubles, so all are exact.
+SUMMARY_KEYS = [
+    Key("t_s", "t_s_s"),
+    Key("t_s_plus", "t_s_plus_s"),
+    Key("K_hat_final", "k_hat_final_per_s2"),        # 0.01 * kappa_q28 / 2^28 of the last telemetry
+    Key("k2_true", "k_true_per_s2"),                 # truth extra[0] of the last sample
+    Key("peak_abs_bdot_cmd_degs.max", "peak_bdot_degps"),
+    Key("peak_abs_mu_deg.max", "peak_mu_deg"),
+    Key("peak_abs_w_degs.axis_max", "peak_w_degps"),  # max over samples and axes of |w_y|, |w_z|
+    Key("w_end_degs", "w_final_degps"),
+    Key("last_20s.max_abs_w_degs", "max_w_tail_degps"),
+    Key("last_20s.max_abs_mu_deg", "max_mu_tail_deg"),
+    Key("t_cmd_limit_persist_s", "t_cmd_limit_persist_s"),   # first CMD_LIMIT_PERSIST, -1 never
+    Key("obs_health_or", "obs_health_sticky"),       # OR of obs_health over the run
+]
+_SENSOR = ["utime", "seq", "period_us", "gy", "gz", "st_y", "st_z", "scenario_flags", "plant_flags"]
+_CMD = ["utime", "seq", "cy", "cz", "mode", "health"]
+_TRUTH = ["utime", "seq", "wy", "wz", "muy", "mudy", "muz", "mudz", "by", "bz",
+          "k2", "bdot_y", "bdot_z", "sigma", "jf", "events"]
 
 
 # ----------------------------------------------------------------------------------------------
 # Reading
 
-def read(path, lcm_py=None):
+def read(path, lcm_py, mission):
     """Decode a log into per-channel numpy columns. Repeated seqs (retransmissions, cached
-    commands) are kept in the raw counts but the series keep the last message of each seq."""
+    commands) are kept in the raw counts but the series keep the last message of each seq.
+    Truth of the sail plant (sim/observer/sail_plant.hpp): state[0..7] w_y, w_z, mu_y, mudot_y,
+    mu_z, mudot_z, beta_y, beta_z; extra[0..4] k^2, bdot_y, bdot_z applied, sigma, J factor."""
     gnc = lcmio.load_types(lcm_py)
-    dec = {
-        "GNC_SENSOR": gnc.sensor_frame_t.decode, "GNC_CMD": gnc.actuator_cmd_t.decode,
-        "GNC_TLM": gnc.fsw_tlm_frame_t.decode, "GNC_TRUTH": gnc.sim_truth_t.decode,
-        "GNC_CTL": gnc.sil_ctl_t.decode, "GNC_TBL_UP": gnc.table_upload_t.decode,
-        "GNC_TBL_ACK": gnc.table_ack_t.decode, "GNC_FSW_CMD": gnc.fsw_cmd_t.decode,
-    }
-    sen, cmd, tlm, tru = [], [], [], []
-    ctl, ack, up = [], [], []
-    other = {}
-    bad = {}
-    lay = tlmmod.layout()
-    for ts, ch, data in lcmio.events(path):
-        f = dec.get(ch)
-        if f is None:
-            other[ch] = other.get(ch, 0) + 1
-            continue
-        try:
-            m = f(data)
-        except ValueError:
-            bad[ch] = bad.get(ch, 0) + 1
-            continue
-        if ch == "GNC_SENSOR":
-            sen.append((m.utime, m.seq, m.period_us, m.counts[0], m.counts[1], m.status[0], m.status[1],
-                        m.scenario_flags, m.plant_flags))
-        elif ch == "GNC_CMD":
-            cmd.append((m.utime, m.seq, m.counts[0], m.counts[1], m.fsw_mode, m.fsw_health))
-        elif ch == "GNC_TLM":
-            tlm.append((m.utime, m.seq, m.tlm_layout_version, m.tlm_len) +
-                       tuple(getattr(m, c) for c in BRIDGE_COUNTERS) + (bytes(m.tlm[:m.tlm_len]),))
-        elif ch == "GNC_TRUTH":
-            tru.append((m.utime, m.seq) + tuple(m.state[:8]) + tuple(m.extra[:5]) + (m.events,))
-        elif ch == "GNC_CTL":
-            ctl.append(dict(utime=m.utime, command=CTL_CMDS.get(m.command, m.command),
-                            node=CTL_NODES.get(m.node_id, m.node_id), status=m.status, seed=m.seed,
-                            scenario=bytes(m.scenario).split(b"\0")[0].decode("ascii", "replace")))
-        elif ch == "GNC_TBL_ACK":
-            ack.append(dict(utime=m.utime, table_id="0x%04X" % (m.table_id & 0xFFFF), revision=m.revision,
-                            result=ACK_RESULTS.get(m.result, m.result), reason="0x%08X" % (m.reason & 0xFFFFFFFF),
-                            bytes_received=m.bytes_received))
-        elif ch == "GNC_FSW_CMD":
-            other[ch] = other.get(ch, 0) + 1
-        else:
-            up.append((m.utime, m.table_id, m.revision, m.total_len, m.offset, m.n))
-
-    def cols(rows, names):
-        if not rows:
-            return {n: np.zeros(0) for n in names}
-        a = list(zip(*rows))
-        return {n: np.array(v) for n, v in zip(names, a)}
-
-    def last_per_seq(d):
-        """Keep the last message of each seq, sorted by seq; 'n_msgs' counts all."""
-        n = len(d["seq"])
-        if n == 0:
-            return d, 0
-        seq = d["seq"]
-        rev = seq[::-1]
-        _, idx = np.unique(rev, return_index=True)
-        keep = np.sort(n - 1 - idx)
-        keep = keep[np.argsort(seq[keep], kind="stable")]
-        return {k: v[keep] for k, v in d.items()}, n
-
-    S, n_sen = last_per_seq(cols(sen, ["utime", "seq", "period_us", "gy", "gz", "st_y", "st_z",
-                                       "scenario_flags", "plant_flags"]))
-    S_all = cols(sen, ["utime", "seq", "period_us", "gy", "gz", "st_y", "st_z", "scenario_flags", "plant_flags"])
-    C, n_cmd = last_per_seq(cols(cmd, ["utime", "seq", "cy", "cz", "mode", "health"]))
-    T, n_tru = last_per_seq(cols(tru, ["utime", "seq", "wy", "wz", "muy", "mudy", "muz", "mudz", "by", "bz",
-                                       "k2", "bdot_y", "bdot_z", "sigma", "jf", "events"]))
-    tnames = ["utime", "seq", "layout", "tlm_len"] + list(BRIDGE_COUNTERS) + ["buf"]
-    if tlm:
-        # keep the last message of each seq, then decode all fsw_tlm_t in one numpy pass
-        by_seq = {}
-        for r in tlm:
-            by_seq[r[1]] = r
-        rows = [by_seq[s] for s in sorted(by_seq)]
-        L = cols(rows, tnames[:-1] + ["_buf"])
-        bufs = [r[-1] for r in rows]
-        bad_len = [i for i, b in enumerate(bufs) if len(b) != lay.nbytes]
-        if bad_len:
-            raise tlmmod.TlmError("GNC_TLM seq %d: tlm_len %d, %s says %d bytes" % (
-                rows[bad_len[0]][1], len(bufs[bad_len[0]]), os.path.basename(lay.path), lay.nbytes))
-        del L["_buf"]
-        raw = lay.decode_many(bufs)
-        L["raw"] = raw
-        L["real"] = lay.scaled_many(raw)
-    else:
-        L = None
-    return dict(path=path, sensor=S, sensor_all=S_all, n_sensor_msgs=n_sen, cmd=C, n_cmd_msgs=n_cmd,
-                truth=T, n_truth_msgs=n_tru, tlm=L, n_tlm_msgs=len(tlm), ctl=ctl, ack=ack, uploads=len(up),
-                other=other, undecodable=bad)
+    sen, cmd, tru = [], [], []
+    C = read_log(path, lcm_py, mission, {
+        "GNC_SENSOR": lambda m: sen.append((m.utime, m.seq, m.period_us, m.counts[0], m.counts[1], m.status[0],
+                                            m.status[1], m.scenario_flags, m.plant_flags)),
+        "GNC_CMD": lambda m: cmd.append((m.utime, m.seq, m.counts[0], m.counts[1], m.fsw_mode, m.fsw_health)),
+        "GNC_TRUTH": lambda m: tru.append((m.utime, m.seq) + tuple(m.state[:8]) + tuple(m.extra[:5]) + (m.events,)),
+    })
+    S, n_sen = last_per_seq(sen, _SENSOR)
+    S_all = columns(sen, _SENSOR)
+    Cm, n_cmd = last_per_seq(cmd, _CMD)
+    T, n_tru = last_per_seq(tru, _TRUTH)
+    sf = gnc.sensor_frame_t
+    return dict(common=C, sensor=S, sensor_all=S_all, n_sensor_msgs=n_sen, cmd=Cm, n_cmd_msgs=n_cmd,
+                truth=T, n_truth_msgs=n_tru, tlm=C["tlm"],
+                flags=dict(stale=sf.STATUS_STALE, sat=sf.STATUS_SAT, diverged=sf.PLANT_DIVERGED, retx=sf.PLANT_RETX))
 
 
 def aligned(R, lag=EST_LAG):
@@ -186,13 +107,17 @@ def aligned(R, lag=EST_LAG):
 # ----------------------------------------------------------------------------------------------
 # Metrics
 
-def _f(x):
-    return None if x is None else float(x)
+def _health_bit(mission, name):
+    for b in mission.iface.health:
+        if b.name == name:
+            return b.mask
+    raise KeyError("%s health has no bit %s (fsw/%s/%s_iface.py)" % (mission.module, name, mission.module,
+                                                                     mission.prefix))
 
 
-def metrics(R):
+def metrics(R, mission, out):
+    """Adds the observer's figures, all derived from the log, to out (tools.sil's common ones)."""
     T, S, C, L = R["truth"], R["sensor"], R["cmd"], R["tlm"]
-    out = {"log": os.path.abspath(R["path"])}
     if len(S["seq"]):
         periods = np.unique(S["period_us"])
         h = float(periods[0]) * 1e-6
@@ -204,15 +129,8 @@ def metrics(R):
         out["period_us"] = int(round(h * 1e6))
         out["period_note"] = "no GNC_SENSOR: period from truth utime spacing"
     else:
-        raise SystemExit("sil: log has neither GNC_SENSOR nor GNC_TRUTH frames")
+        raise SystemExit("sil report: log has neither GNC_SENSOR nor GNC_TRUTH frames")
     out["h_s"] = h
-    out["messages"] = {"GNC_SENSOR": R["n_sensor_msgs"], "GNC_CMD": R["n_cmd_msgs"], "GNC_TLM": R["n_tlm_msgs"],
-                       "GNC_TRUTH": R["n_truth_msgs"], "GNC_CTL": len(R["ctl"]), "GNC_TBL_UP": R["uploads"],
-                       "GNC_TBL_ACK": len(R["ack"])}
-    if R["other"]:
-        out["messages_other_channels"] = R["other"]
-    if R["undecodable"]:
-        out["undecodable"] = R["undecodable"]
     out["steps"] = {"sensor_seqs": int(len(S["seq"])), "cmd_seqs": int(len(C["seq"])),
                     "tlm_seqs": int(len(L["seq"])) if L else 0, "truth_seqs": int(len(T["seq"]))}
     if len(S["seq"]):
@@ -221,6 +139,7 @@ def metrics(R):
         out["steps"]["sensor_seq_missing"] = int(seq[-1] - seq[0] + 1 - len(seq))
     if len(T["seq"]):
         t = T["utime"] * 1e-6
+        ht = float(t[1] - t[0]) if len(t) > 1 else h    # the live metrics' h: truth spacing
         sig = T["sigma"][-1]
         out["model"] = "M-phys" if sig > 0 else ("M-paper" if sig < 0 else "unknown (sigma 0)")
         out["sigma"] = float(sig)
@@ -228,64 +147,56 @@ def metrics(R):
         out["t0_s"] = float(t[0])
         out["t_end_s"] = float(t[-1])
         out["duration_s"] = float(t[-1] - t[0] + h)
-        w = np.hypot(T["wy"], T["wz"]) / DEG
+        wy, wz = T["wy"] / DEG, T["wz"] / DEG
+        w = np.hypot(wy, wz)
         mu = np.maximum(np.abs(T["muy"]), np.abs(T["muz"])) / DEG
         above = np.nonzero(w >= W_THR)[0]
         above_p = np.nonzero((w >= W_THR) | (mu >= MU_THR))[0]
-        out["t_s"] = float(t[above[-1]] + h) if len(above) else 0.0
-        out["t_s_plus"] = float(t[above_p[-1]] + h) if len(above_p) else 0.0
+        out["t_s"] = float(t[above[-1]] + ht) if len(above) else 0.0
+        out["t_s_plus"] = float(t[above_p[-1]] + ht) if len(above_p) else 0.0
         out["settled"] = bool(len(above) == 0 or above[-1] < len(t) - 1)
         out["settled_plus"] = bool(len(above_p) == 0 or above_p[-1] < len(t) - 1)
         out["k2_true"] = float(T["k2"][-1])
         out["peak_abs_mu_deg"] = {"y": float(np.max(np.abs(T["muy"])) / DEG), "z": float(np.max(np.abs(T["muz"])) / DEG),
                                   "max": float(np.max(mu))}
-        out["peak_abs_w_degs"] = {"y": float(np.max(np.abs(T["wy"])) / DEG), "z": float(np.max(np.abs(T["wz"])) / DEG),
-                                  "norm": float(np.max(w))}
+        py, pz = float(np.max(np.abs(wy))), float(np.max(np.abs(wz)))
+        out["peak_abs_w_degs"] = {"y": py, "z": pz, "axis_max": max(py, pz), "norm": float(np.max(w))}
         out["w_end_degs"] = float(w[-1])
-        last20 = t >= t[-1] - 20.0
-        out["last_20s"] = {"max_abs_w_degs": float(np.max(w[last20])), "max_abs_mu_deg": float(np.max(mu[last20]))}
+        # T_end = (last utime + period) / 1e6 is the scenario's duration_s to the bit for a
+        # completed run (both correctly rounded from the same decimal), the live metrics' T_end
+        tail = t >= (int(T["utime"][-1]) + out["period_us"]) / 1e6 - TAIL_S
+        out["last_20s"] = {"max_abs_w_degs": float(np.max(w[tail])), "max_abs_mu_deg": float(np.max(mu[tail]))}
         out["peak_abs_beta_deg"] = {"y": float(np.max(np.abs(T["by"])) / DEG), "z": float(np.max(np.abs(T["bz"])) / DEG)}
         out["beta_end_deg"] = {"y": float(T["by"][-1] / DEG), "z": float(T["bz"][-1] / DEG)}
         ev = int(np.bitwise_or.reduce(T["events"].astype(np.int64))) if len(T["events"]) else 0
         out["truth_events_or"] = "0x%08X" % (ev & 0xFFFFFFFF)
         out["truth_steps_with_events"] = int(np.count_nonzero(T["events"]))
     if len(C["seq"]):
-        out["peak_abs_bdot_cmd_degs"] = {"y": float(np.max(np.abs(C["cy"])) * LSB / DEG),
-                                         "z": float(np.max(np.abs(C["cz"])) * LSB / DEG)}
-        out["final_mode_cmd"] = MODES.get(int(C["mode"][-1]), int(C["mode"][-1]))
+        py, pz = float(np.max(np.abs(C["cy"])) * LSB / DEG), float(np.max(np.abs(C["cz"])) * LSB / DEG)
+        out["peak_abs_bdot_cmd_degs"] = {"y": py, "z": pz, "max": max(py, pz)}
+        out["final_mode_cmd"] = mode_name(mission, C["mode"][-1])
         out["final_fsw_health_cmd"] = "0x%08X" % (int(C["health"][-1]) & 0xFFFFFFFF)
     if L:
         raw, real = L["raw"], L["real"]
-        lay = tlmmod.layout()
-        out["tlm_layout_version"] = sorted(set(int(v) for v in L["layout"]))
-        out["tlm_layout_version_json"] = lay.layout_version
+        hb = mission.iface.health
         out["K_hat_final"] = float(0.01 * real["obs_kappa"][-1])
         out["K_hat_initial"] = float(0.01 * real["obs_kappa"][0])
-        if "k2_true" in out and out["k2_true"] != 0:
+        if out.get("k2_true"):
             out["K_hat_rel_err"] = out["K_hat_final"] / out["k2_true"] - 1.0
         pkk = real["obs_pkk"][-1]
         out["sigma_K_final"] = float(0.01 * math.sqrt(max(pkk, 0.0)) * 2.0 ** LS6)
-        out["obs_revision"] = int(raw["obs_revision"][-1])
-        out["tbl_revision"] = int(raw["tbl_revision"][-1])
-        fb = _bit_names("fsw/app/fsw_exec.h", "FSW_H_")
-        ob = _bit_names("fsw/observer/obs.h", "OBS_H_")
-        mode = int(raw["mode"][-1])
-        out["final_mode"] = MODES.get(mode, mode)
-        out["modes_seen"] = [MODES.get(int(m), int(m)) for m in np.unique(raw["mode"])]
-        out["health_final"] = bits_str(raw["health"][-1], fb)
-        out["health_sticky"] = bits_str(raw["health_sticky"][-1], fb)
-        out["obs_health_final"] = bits_str(raw["obs_health"][-1], ob)
-        out["obs_health_sticky"] = bits_str(raw["obs_health_sticky"][-1], ob)
-        out["bridge_counters"] = {c: int(L[c][-1]) for c in BRIDGE_COUNTERS}
-        cnt = [f["name"] for f in lay.fields if f.get("unit") == "count" or f["name"].startswith("n_")
-               or f["name"].startswith("obs_n_")]
-        out["fsw_counters"] = {c: int(raw[c][-1]) for c in cnt}
-        out["tbl_reason_last"] = "0x%08X" % int(raw["tbl_reason"][-1])
-        out["deterministic"] = out["bridge_counters"]["missed"] == 0
+        # the observer's counters and table revision: last telemetry (raw), beside the executive's
+        out["fsw"].update({k: int(raw[k][-1]) for k in mission.layout.names
+                           if k.startswith("obs_n_") or k == "obs_revision"})
+        out["obs_health_final"] = bits_str(raw["obs_health"][-1], hb)
+        out["obs_health_sticky"] = bits_str(raw["obs_health_sticky"][-1], hb)
+        out["obs_health_or"] = int(np.bitwise_or.reduce(raw["obs_health"].astype(np.int64)))
+        hit = np.nonzero(raw["obs_health"].astype(np.int64) & _health_bit(mission, "CMD_LIMIT_PERSIST"))[0]
+        out["t_cmd_limit_persist_s"] = float(L["utime"][hit[0]] * 1e-6) if len(hit) else -1.0
         if len(T["seq"]):
             A = aligned(R)
             t = A["t"]
-            last20 = t >= t[-1] - 20.0
+            last20 = t >= t[-1] - TAIL_S
             ew = np.hypot(A["obs_x_wy"] - T["wy"], A["obs_x_wz"] - T["wz"]) / DEG
             em = np.maximum(np.abs(A["obs_x_muy"] - T["muy"]), np.abs(A["obs_x_muz"] - T["muz"])) / DEG
             ok = np.isfinite(ew)
@@ -302,101 +213,92 @@ def metrics(R):
                 "max_mu_err_deg_last_20s": nmax(em, last20)}
         out["peak_abs_obs_u_degs"] = {"y": float(np.max(np.abs(real["obs_u_y"])) / DEG),
                                       "z": float(np.max(np.abs(real["obs_u_z"])) / DEG)}
-    Sa = R["sensor_all"]
+    Sa, fl = R["sensor_all"], R["flags"]
     if len(Sa["seq"]):
         pf = Sa["plant_flags"].astype(np.int64)
-        out["sensor_frames_retx"] = int(np.count_nonzero(pf & PLANT_RETX))
-        out["sensor_frames_diverged"] = int(np.count_nonzero(pf & PLANT_DIVERGED))
-        out["sensor_status_sat"] = int(np.count_nonzero((Sa["st_y"] | Sa["st_z"]) & STATUS_SAT))
-        out["sensor_status_stale"] = int(np.count_nonzero((Sa["st_y"] | Sa["st_z"]) & STATUS_STALE))
+        st = (Sa["st_y"] | Sa["st_z"]).astype(np.int64)
+        out["sensor_frames_retx"] = int(np.count_nonzero(pf & fl["retx"]))
+        out["sensor_frames_diverged"] = int(np.count_nonzero(pf & fl["diverged"]))
+        out["sensor_status_sat"] = int(np.count_nonzero(st & fl["sat"]))
+        out["sensor_status_stale"] = int(np.count_nonzero(st & fl["stale"]))
         sf = int(np.bitwise_or.reduce(Sa["scenario_flags"].astype(np.int64)))
         out["scenario_flags_or"] = "0x%08X" % (sf & 0xFFFFFFFF)
-    if R["ctl"]:
-        out["ctl"] = [c for c in R["ctl"] if c["command"] != "HEARTBEAT"]
-        scen = [c["scenario"] for c in R["ctl"] if c["command"] == "START"]
-        if scen:
-            out["scenario"] = scen[0]
-            out["seed"] = [c["seed"] for c in R["ctl"] if c["command"] == "START"][0]
-    if R["ack"]:
-        out["table_acks"] = [a for a in R["ack"] if a["result"] != "PARTIAL"]
     return out
 
 
-def format_summary(m):
+def format_summary(m, src):
+    """The observer's lines; src.tag(...) marks the log-derived ones when a run summary is in use."""
     g = m.get
-    lines = ["SIL run report: %s" % g("log")]
-    if "scenario" in m:
-        lines.append("  scenario          %s (seed %s)" % (m["scenario"], g("seed")))
-    lines.append("  model             %s (sigma %+g, J factor %s)" % (g("model", "?"), g("sigma", 0), g("j_factor")))
+    lines = ["  model             %s (sigma %+g, J factor %s)" % (g("model", "?"), g("sigma", 0), g("j_factor"))]
     lines.append("  period h          %d us" % g("period_us"))
     if "duration_s" in m:
         lines.append("  duration          %.3f s (t %.3f .. %.3f s)" % (m["duration_s"], m["t0_s"], m["t_end_s"]))
     st = m["steps"]
     lines.append("  steps             sensor %d, cmd %d, tlm %d, truth %d (unique seqs)"
                  % (st["sensor_seqs"], st["cmd_seqs"], st["tlm_seqs"], st["truth_seqs"]))
-    lines.append("  messages          " + ", ".join("%s %d" % kv for kv in m["messages"].items()))
     if "t_s" in m:
-        lines.append("  t_s               %.3f s%s" % (m["t_s"], "" if m["settled"] else "  (NOT SETTLED at end)"))
-        lines.append("  t_s+              %.3f s%s" % (m["t_s_plus"], "" if m["settled_plus"] else "  (NOT SETTLED at end)"))
+        lines.append("  t_s               %.3f s%s%s" % (m["t_s"], "" if m["settled"] else "  (NOT SETTLED at end)",
+                                                      src.tag("t_s")))
+        lines.append("  t_s+              %.3f s%s%s" % (m["t_s_plus"], "" if m["settled_plus"] else "  (NOT SETTLED at end)",
+                                                      src.tag("t_s_plus")))
     if "K_hat_final" in m:
-        lines.append("  K_hat final       %.6g s^-2 (+-3 sigma %.3g; initial %.6g)   true k^2 %.6g   rel err %+.3f %%"
-                     % (m["K_hat_final"], 3 * m["sigma_K_final"], m["K_hat_initial"], g("k2_true", float("nan")),
-                        100 * g("K_hat_rel_err", float("nan"))))
+        lines.append("  K_hat final       %.6g s^-2   true k^2 %.6g%s" % (m["K_hat_final"], g("k2_true", float("nan")),
+                                                                        src.tag("K_hat_final", "k2_true")))
+        rel = m["K_hat_final"] / m["k2_true"] - 1.0 if m.get("k2_true") else float("nan")
+        lines.append("                    rel err %+.3f %%; +-3 sigma %.3g; initial %.6g%s"
+                     % (100 * rel, 3 * m["sigma_K_final"], m["K_hat_initial"], src.tag("sigma_K_final")))
     if "peak_abs_bdot_cmd_degs" in m:
         p = m["peak_abs_bdot_cmd_degs"]
-        lines.append("  peak |bdot| cmd   y %.4f  z %.4f deg/s" % (p["y"], p["z"]))
+        lines.append("  peak |bdot| cmd   %.4f deg/s%s" % (p["max"], src.tag("peak_abs_bdot_cmd_degs.max")))
+        lines.append("                    y %.4f  z %.4f deg/s%s" % (p["y"], p["z"], src.tag("peak_abs_bdot_cmd_degs.y")))
     if "peak_abs_mu_deg" in m:
-        p = m["peak_abs_mu_deg"]
-        lines.append("  peak |mu|         y %.4f  z %.4f  max %.4f deg" % (p["y"], p["z"], p["max"]))
-        p = m["peak_abs_w_degs"]
-        lines.append("  peak |w|          y %.4f  z %.4f  |w| %.4f deg/s" % (p["y"], p["z"], p["norm"]))
-        lines.append("  |w| at end        %.3g deg/s" % m["w_end_degs"])
+        p, q = m["peak_abs_mu_deg"], m["peak_abs_w_degs"]
+        lines.append("  peak |mu|         %.4f deg; peak |w_y|, |w_z| %.4f deg/s%s"
+                     % (p["max"], q["axis_max"], src.tag("peak_abs_mu_deg.max", "peak_abs_w_degs.axis_max")))
+        lines.append("                    |mu| y %.4f z %.4f deg; |w| y %.4f z %.4f, norm %.4f deg/s%s"
+                     % (p["y"], p["z"], q["y"], q["z"], q["norm"], src.tag("peak_abs_mu_deg.y")))
         p = m["last_20s"]
-        lines.append("  last 20 s         max |w| %.3g deg/s, max |mu| %.3g deg" % (p["max_abs_w_degs"], p["max_abs_mu_deg"]))
-        p = m["peak_abs_beta_deg"]
-        q = m["beta_end_deg"]
-        lines.append("  beta              peak y %.4f z %.4f deg; end y %+.4f z %+.4f deg" % (p["y"], p["z"], q["y"], q["z"]))
-        lines.append("  truth events      OR %s in %d steps" % (m["truth_events_or"], m["truth_steps_with_events"]))
+        lines.append("  |w| at end        %.3g deg/s; last 20 s max |w| %.3g deg/s, max |mu| %.3g deg%s"
+                     % (m["w_end_degs"], p["max_abs_w_degs"], p["max_abs_mu_deg"],
+                        src.tag("w_end_degs", "last_20s.max_abs_w_degs", "last_20s.max_abs_mu_deg")))
+        p, q = m["peak_abs_beta_deg"], m["beta_end_deg"]
+        lines.append("  beta              peak y %.4f z %.4f deg; end y %+.4f z %+.4f deg%s"
+                     % (p["y"], p["z"], q["y"], q["z"], src.tag("beta")))
+        lines.append("  truth events      OR %s in %d steps%s" % (m["truth_events_or"], m["truth_steps_with_events"],
+                                                                 src.tag("truth_events_or")))
         ee = m.get("estimate_error")
         if ee:
             g2 = lambda v: "n/a" if v is None else "%.3g" % v
-            lines.append("  estimate error    |w| %s deg/s after t_s, %s last 20 s; |mu| %s deg max, %s last 20 s (%s)"
+            lines.append("  estimate error    |w| %s deg/s after t_s, %s last 20 s; |mu| %s deg max, %s last 20 s%s"
                          % (g2(ee["max_w_err_degs_after_t_s"]), g2(ee["max_w_err_degs_last_20s"]),
-                            g2(ee["max_mu_err_deg"]), g2(ee["max_mu_err_deg_last_20s"]), ee["alignment"]))
-    lines.append("Faults seen")
-    if "bridge_counters" in m:
-        lines.append("  bridge            " + ", ".join("%s %d" % kv for kv in m["bridge_counters"].items()))
-        c = m["fsw_counters"]
-        names = list(c)
+                            g2(ee["max_mu_err_deg"]), g2(ee["max_mu_err_deg_last_20s"]), src.tag("estimate_error")))
+            lines.append("                    (%s)" % ee["alignment"])
+    lines.append("Observer faults")
+    if "obs_health_or" in m:
+        f = m["fsw"]
+        names = [k for k in f if k.startswith("obs_n_")]
         for i in range(0, len(names), 6):
-            lines.append(("  fsw counters      " if i == 0 else "                    ") +
-                         ", ".join("%s %d" % (k, c[k]) for k in names[i:i + 6]))
-        lines.append("  final mode        %s (modes seen: %s)" % (m["final_mode"], " ".join(str(x) for x in m["modes_seen"])))
-        lines.append("  health final      %s" % m["health_final"])
-        lines.append("  health sticky     %s" % m["health_sticky"])
-        lines.append("  obs health final  %s" % m["obs_health_final"])
-        lines.append("  obs health sticky %s" % m["obs_health_sticky"])
-        lines.append("  table revision    fsw %d, obs %d; last refusal reason %s"
-                     % (m["tbl_revision"], m["obs_revision"], m["tbl_reason_last"]))
-        lines.append("  deterministic     %s (bridge missed = %d)" % ("yes" if m["deterministic"] else "NO",
-                                                                      m["bridge_counters"]["missed"]))
+            lines.append(("  obs counters      " if i == 0 else "                    ") +
+                         ", ".join("%s %s" % (k[4:], f[k]) for k in names[i:i + 6]) +
+                         src.tag(*("fsw." + k for k in names[i:i + 6])))
+        lines.append("  obs table rev     %s%s" % (f["obs_revision"], src.tag("fsw.obs_revision")))
+        lines.append("  obs health OR     %s%s" % (bits_str(m["obs_health_or"], src.mission.iface.health), src.tag("obs_health_or")))
+        lines.append("  obs health final  %s%s" % (m["obs_health_final"], src.tag("obs_health_final")))
+        lines.append("  obs health sticky %s (the module's own sticky word)%s" % (m["obs_health_sticky"],
+                                                                                src.tag("obs_health_sticky")))
+        t = m["t_cmd_limit_persist_s"]
+        lines.append("  CMD_LIMIT_PERSIST %s%s" % ("never" if t < 0 else "first at t %.2f s" % t,
+                                                 src.tag("t_cmd_limit_persist_s")))
     else:
-        lines.append("  no GNC_TLM telemetry in the log")
+        lines.append("  no observer telemetry in the log")
     if "sensor_frames_retx" in m:
-        lines.append("  sensor frames     PLANT_RETX %d, PLANT_DIVERGED %d, status SAT %d, STALE %d; scenario flags OR %s"
+        lines.append("  sensor frames     PLANT_RETX %d, PLANT_DIVERGED %d, status SAT %d, STALE %d; scenario flags OR %s%s"
                      % (m["sensor_frames_retx"], m["sensor_frames_diverged"], m["sensor_status_sat"],
-                        m["sensor_status_stale"], m["scenario_flags_or"]))
-        lines.append("  missing seqs      %d" % m["steps"].get("sensor_seq_missing", 0))
+                        m["sensor_status_stale"], m["scenario_flags_or"], src.tag("sensor_frames_retx")))
+        lines.append("  missing seqs      %d%s" % (m["steps"].get("sensor_seq_missing", 0), src.tag("steps")))
     if "final_mode_cmd" in m:
-        lines.append("  GNC_CMD final     mode %s, health %s" % (m["final_mode_cmd"], m["final_fsw_health_cmd"]))
-    for a in m.get("table_acks", []):
-        lines.append("  table ack         t %.3f s id %s rev %d %s reason %s (%d bytes)"
-                     % (a["utime"] * 1e-6, a["table_id"], a["revision"], a["result"], a["reason"], a["bytes_received"]))
-    for c in m.get("ctl", []):
-        if c["command"] in ("SUMMARY", "STOP"):
-            lines.append("  ctl               %s from %s, status %d" % (c["command"], c["node"], c["status"]))
-    if "undecodable" in m:
-        lines.append("  UNDECODABLE       %s" % m["undecodable"])
+        lines.append("  GNC_CMD final     mode %s, health %s%s" % (m["final_mode_cmd"], m["final_fsw_health_cmd"],
+                                                                 src.tag("final_mode_cmd")))
     return "\n".join(lines) + "\n"
 
 
@@ -546,38 +448,3 @@ def plots(R, m, out):
             a.legend(loc="upper right", fontsize=8)
         save(fig, "innov.png")
     return files
-
-
-def _jsonable(o):
-    if isinstance(o, dict):
-        return {str(k): _jsonable(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [_jsonable(v) for v in o]
-    if isinstance(o, (np.integer,)):
-        return int(o)
-    if isinstance(o, (np.floating, float)):
-        v = float(o)
-        return v if math.isfinite(v) else None
-    return o
-
-
-def main(args):
-    try:
-        R = read(args.log, args.lcm_py)
-    except tlmmod.TlmError as e:
-        raise SystemExit("sil report: %s" % e)
-    m = metrics(R)
-    os.makedirs(args.out, exist_ok=True)
-    text = format_summary(m)
-    print(text, end="")
-    with open(os.path.join(args.out, "summary.txt"), "w") as fh:
-        fh.write(text)
-    js = json.dumps(_jsonable(m), indent=1, sort_keys=False) + "\n"
-    paths = [os.path.join(args.out, "summary.json")] + ([args.json] if args.json else [])
-    for p in paths:
-        with open(p, "w") as fh:
-            fh.write(js)
-    if not args.no_plots:
-        for p in plots(R, m, args.out):
-            print("wrote %s" % p)
-    return 0
