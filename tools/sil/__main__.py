@@ -1,4 +1,4 @@
-"""python -m tools.sil {report LOG --out DIR [--summary S.json] |
+"""python -m tools.sil {report LOG --out DIR [--summary S.json] | agree S.json R.json |
 compare LOG_A LOG_B [--channel CH ...]} (from the repo root). No command names a mission: the
 report finds it from the log (tools/sil/report.py)."""
 import argparse
@@ -20,6 +20,13 @@ def main(argv=None):
                    help="lcm-gen Python bindings dir (default %(default)s; generated if missing)")
     r.add_argument("--json", help="also write the report JSON to this file")
     r.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    g = sub.add_parser("agree", help="compare a report's own derivation (report --json, no --summary) "
+                                     "with the run's summary.json; exit 1 on any disagreement")
+    g.add_argument("summary", metavar="SUMMARY.json")
+    g.add_argument("report", metavar="REPORT.json")
+    g.add_argument("--quiet", action="store_true", help="print only the disagreements and the verdict")
+    g.add_argument("--nudge", metavar="KEY",
+                   help="self-test: then move the summary's KEY by one ulp and require a disagreement")
     c = sub.add_parser("compare", help="byte-compare the messages of channels between two logs")
     c.add_argument("log_a")
     c.add_argument("log_b")
@@ -32,6 +39,9 @@ def main(argv=None):
     if a.cmd == "report":
         from . import report
         return report.main(a)
+    if a.cmd == "agree":
+        from . import agree
+        return agree.main(a)
     from . import compare
     return compare.main(a)
 
