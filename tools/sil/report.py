@@ -482,9 +482,9 @@ def main(args):
                                  dict(report=r[0], summary=r[1], log=r[2], run=r[3]) for r in bad],
                                  "missing": missing}}
         m["run_summary"] = summary
-        head.append("  figures           run summary %s (C++ live metrics); lines marked (log) are derived"
+        head.append("  figures           run summary %s (C++ live metrics); lines marked (log) are"
                     % args.summary)
-        head.append("                    from the log; the log's own derivation %s on %d shared figures%s"
+        head.append("                    derived from the log; the log's own derivation %s on %d shared figures%s"
                     % ("agrees" if not bad else "DISAGREES (%d)" % len(bad), len(rows),
                        "" if not missing else "; %d key-map entries missing" % len(missing)))
         for r in bad:
