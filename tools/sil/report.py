@@ -25,10 +25,10 @@ run control and table acks, and the run summary.
 Figures. Without --summary every figure is derived from the log (the report says so). With
 --summary SUMMARY.json (the C++ live metrics of the same run: hil_host/sil/metrics.cpp and
 hil_host/missions/<module>/*_metrics.cpp) each figure of the key map (CORE_KEYS here, the
-mission's SUMMARY_KEYS) is the summary's value, the figures only the log gives (estimate errors,
-gimbal angles, plans ...) stay log-derived and are marked "(log)", the summary's other keys are
-listed as they are, and the report's own re-derivation is compared with the summary (the check
-of `python -m tools.sil agree`).
+mission's SUMMARY_KEYS) is the summary's value; the figures only the log gives (whatever the
+mission's report derives beyond them) stay log-derived and are marked "(log)"; the summary's
+other keys are listed as they are; and the report's own re-derivation is compared with the
+summary (the check of `python -m tools.sil agree`).
 """
 import collections
 import copy
