@@ -8,8 +8,10 @@
 #                sim/scenarios/rendezvous_example.yaml (terminal rendezvous, the impulse scheduler)
 #
 # Output per scenario: build/run/<scenario file name>/ with run.lcmlog (replay: lcm-logplayer),
-# summary.txt, summary.json and the PNG plots. Environment: SIL_PORT (default 7667),
-# FSW_RUN_JOBS (build parallelism, default nproc).
+# summary.txt and summary.json (the run's live metrics, written by the plant process), the report
+# (report.txt, report.json: `python -m tools.sil report`, whose acceptance figures are those of
+# summary.json) and the PNG plots. Environment: SIL_PORT (default 7667), FSW_RUN_JOBS (build
+# parallelism, default nproc).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
@@ -33,11 +35,11 @@ for scn in "${scenarios[@]}"; do
     t0=$(date +%s%N)
     tools/sil/run_udpm.sh "$scn" "$out" "$port" build/host/hil_host/sil/sil
     ms=$(( ($(date +%s%N) - t0) / 1000000 ))
-    steps=$(sed -n 's/^plant_steps = //p' "$out/plant_summary.txt")
+    steps=$(sed -n 's/^plant_steps = //p' "$out/summary.txt")
     echo "    $steps lock-step steps in $((ms / 1000)).$(printf '%03d' $((ms % 1000))) s wall clock" \
          "($(( steps * 1000 / (ms > 0 ? ms : 1) )) steps/s, process start-up included)"
     echo "=== report: $out"
-    "$py" -m tools.sil report "$out/run.lcmlog" --out "$out" \
+    "$py" -m tools.sil report "$out/run.lcmlog" --out "$out" --summary "$out/summary.json" \
         --lcm-py build/host/lcmtypes/python
     port=$((port + 1))
 done

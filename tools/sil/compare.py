@@ -23,22 +23,21 @@ def payloads(path, channels, dedup=False):
 
 
 def _describe(ch, data, lcm_py):
-    """Best-effort field diff helper: decode one payload into a dict (None if impossible)."""
+    """Best-effort field diff helper: decode one payload into a dict (None if impossible); the
+    telemetry in the layout of the mission its layout version names (tools.iface)."""
     try:
-        gnc = lcmio.load_types(lcm_py)
-        cls = {"GNC_SENSOR": gnc.sensor_frame_t, "GNC_CMD": gnc.actuator_cmd_t, "GNC_TLM": gnc.fsw_tlm_frame_t,
-               "GNC_TRUTH": gnc.sim_truth_t, "GNC_CTL": gnc.sil_ctl_t, "GNC_TBL_UP": gnc.table_upload_t,
-               "GNC_TBL_ACK": gnc.table_ack_t}[ch]
+        cls = lcmio.msg_type(lcmio.load_types(lcm_py), ch)
         msg = cls.decode(data)
     except Exception:
         return None
     d = {k: getattr(msg, k) for k in msg.__slots__}
     if ch == "GNC_TLM":
-        from . import tlm
+        from tools import iface
         buf = bytes(d.pop("tlm"))[:d["tlm_len"]]
         try:
-            d.update({"tlm." + k: v for k, v in tlm.decode(buf).items()})
-        except tlm.TlmError as e:
+            lay = iface.mission(d["tlm_layout_version"] & 0xFFFFFFFF).layout
+            d.update({"tlm." + k: v for k, v in lay.decode(buf).items()})
+        except iface.IfaceError as e:
             d["tlm"] = "undecodable: %s" % e
     return d
 

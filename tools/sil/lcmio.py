@@ -10,10 +10,17 @@ import subprocess
 import sys
 import tempfile
 
-from .tlm import ROOT
+from tools.iface import ROOT
 
 DEFAULT_LCM_PY = os.path.join("build", "host", "lcmtypes", "python")
 LCM_SRC = os.path.join(ROOT, "hil_host", "lcmtypes")
+
+# Channel -> message type (hil_host/sil/channels.hpp); the same for every mission.
+CHANNELS = {
+    "GNC_SENSOR": "sensor_frame_t", "GNC_CMD": "actuator_cmd_t", "GNC_TLM": "fsw_tlm_frame_t",
+    "GNC_TRUTH": "sim_truth_t", "GNC_CTL": "sil_ctl_t", "GNC_TBL_UP": "table_upload_t",
+    "GNC_TBL_ACK": "table_ack_t", "GNC_FSW_CMD": "fsw_cmd_t",
+}
 
 _tmpdirs = []
 
@@ -39,6 +46,19 @@ def load_types(lcm_py=None):
         sys.path.insert(0, cand)
     import gnc  # noqa: E402  (bindings are on the path only now)
     return gnc
+
+
+def msg_type(gnc, channel):
+    """The gnc message class of a channel, or None for a channel the SIL does not define."""
+    name = CHANNELS.get(channel)
+    return getattr(gnc, name) if name else None
+
+
+def consts(cls, prefix):
+    """{value: NAME} of a message type's constants PREFIX_NAME (sil_ctl_t CMD_, table_ack_t RESULT_),
+    as lcm-gen writes them into the class: the .lcm file is the only source of these names."""
+    return {getattr(cls, k): k[len(prefix):] for k in dir(cls)
+            if k.startswith(prefix) and isinstance(getattr(cls, k), int)}
 
 
 def events(path):

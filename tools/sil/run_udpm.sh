@@ -7,8 +7,10 @@
 #
 #   tools/sil/run_udpm.sh SCENARIO OUT_DIR PORT [SIL_BIN]
 #
-# Writes OUT_DIR/run.lcmlog (standard LCM event log, replayable with lcm-logplayer) and
-# OUT_DIR/plant_summary.txt; prints the plant's progress on stderr. Exit status: the plant's
+# Writes OUT_DIR/run.lcmlog (standard LCM event log, replayable with lcm-logplayer) and the
+# run's live metrics from the plant process (C++: plant, executive, bridge and mission figures),
+# OUT_DIR/summary.txt (key = value) and OUT_DIR/summary.json (the same; `python -m tools.sil
+# report --summary` reads it); prints the plant's progress on stderr. Exit status: the plant's
 # (0 = run completed, DIVERGED included: that is a result), or 1 if a node failed.
 set -euo pipefail
 [ $# -ge 3 ] || { echo "usage: $0 SCENARIO OUT_DIR PORT [SIL_BIN]" >&2; exit 2; }
@@ -19,7 +21,7 @@ sil=${4:-build/host/hil_host/sil/sil}
 url="udpm://239.255.76.67:${port}?ttl=0"
 log="$out/run.lcmlog"
 mkdir -p "$out"
-rm -f "$log"
+rm -f "$log" "$out/summary.txt" "$out/summary.json"
 [ -x "$sil" ] || { echo "run_udpm: $sil not built" >&2; exit 1; }
 
 lp=""
@@ -50,7 +52,7 @@ done
 bp=$!
 rc=0
 "$sil" plant --scenario "$scn" --url "$url" --progress --ready-timeout-ms 10000 \
-    --summary "$out/plant_summary.txt" >/dev/null || rc=$?
+    --summary "$out/summary.txt" --summary-json "$out/summary.json" >/dev/null || rc=$?
 brc=0
 wait "$bp" || brc=$?
 bp=""
