@@ -48,7 +48,9 @@ static bool cfg_ok(const fsw_cfg_t *cfg)
 fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const uint8_t *boot, uint32_t boot_len)
 {
     fsw_rc_t rc = FSW_ERR_ARG;
-    if ((f != NULL) && (boot != NULL) && cfg_ok(cfg)) {
+    /* boot == NULL with boot_len == 0: no table in the image; one arrives by upload. */
+    bool tableless = (boot == NULL) && (boot_len == 0u);
+    if ((f != NULL) && ((boot != NULL) || tableless) && cfg_ok(cfg)) {
         const fsw_mis_desc_t *d = fsw_mis_desc(cfg->mission);
         uint32_t why = 0u;
         uint32_t len = 0u;
@@ -58,7 +60,9 @@ fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const uint8_t *boot, uint32_t 
         if (rc == FSW_OK) {
             pl = fsw_table_payload(&f->tbl, &len);
         }
-        if (pl != NULL) {
+        if (tableless) {
+            /* nothing refused: NO_TABLE (and SAFE) until an upload commits */
+        } else if (pl != NULL) {
             uint32_t v = fsw_mis_check(cfg->mission, &f->m, pl, len, cfg->period_us);
             if ((v == 0u) &&
                 fsw_mis_load(cfg->mission, &f->m, pl, len, fsw_table_revision(&f->tbl), false)) {
@@ -76,7 +80,7 @@ fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const uint8_t *boot, uint32_t 
                 rc = FSW_ERR_INVARIANT;
             }
         }
-        if (!f->init_ok) {
+        if ((!f->init_ok) && (!tableless)) {
             fx_cnt_inc(&f->tlm.n_tbl_rej);
         }
         f->tlm.tbl_revision = fsw_table_revision(&f->tbl);

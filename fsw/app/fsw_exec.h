@@ -117,7 +117,10 @@ typedef struct {
  * upload, plus the mission's module check. FSW_ERR_ARG on a bad cfg or NULL (f untouched); a boot
  * image that fails its checks returns the loader's code or FSW_ERR_INVARIANT and leaves the
  * executive to go SAFE at its first step with FSW_H_NO_TABLE. Images come from the mission's
- * encoder (e.g. obs_table_encode) or from the ground tools.
+ * encoder (e.g. obs_table_encode) or from the ground tools. boot == NULL with boot_len == 0 boots
+ * without a table (a generic image, the table is loaded on the ground or in orbit): FSW_OK,
+ * nothing counted as refused, FSW_H_NO_TABLE until an upload commits; one committed at the
+ * boundary of the first step lets the executive enter its boot mode directly.
  */
 fsw_rc_t fsw_init(fsw_t *f, const fsw_cfg_t *cfg, const uint8_t *boot, uint32_t boot_len);
 void     fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out);

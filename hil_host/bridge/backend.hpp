@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "bridge_types.hpp"
+#include "frame_validator.hpp"
 
 namespace bridge {
 
@@ -41,6 +42,9 @@ public:
     // One telecommand for the next step (the bridge calls it just before step()). false: this
     // backend takes no such command (the bridge counts cmd_rej).
     virtual bool command(const FswCommand &) { return false; }
+    // After a step: true, with the new limits, when the flight software's channel ranges
+    // changed in it (a table committed). The bridge applies them from the next frame on.
+    virtual bool limits_changed(SensorLimits &) { return false; }
 };
 
 }  // namespace bridge

@@ -36,6 +36,10 @@ Reply Bridge::on_frame(const Frame &in)
         r.outcome = Outcome::BackendFailed;
         return r;
     }
+    SensorLimits lim{};
+    if (be_.limits_changed(lim)) {
+        val_.set_limits(lim);
+    }
     Command cmd{};
     cmd.utime = f.utime;
     cmd.seq = f.seq;

@@ -45,6 +45,8 @@ public:
     int apply_ranges(Frame &f, Counters &c);
 
     const SensorLimits &limits() const { return lim_; }
+    // New limits (a table changed the ranges); the last good values are kept.
+    void set_limits(const SensorLimits &lim) { lim_ = lim; }
     std::int32_t last_good(std::size_t i) const { return last_good_[i]; }
 
 private:

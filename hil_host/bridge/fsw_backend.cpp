@@ -22,7 +22,8 @@ bool InProcessFswBackend::reset()
 {
     *f_ = fsw_t{};
     out_ = fsw_out_t{};
-    boot_rc_ = fsw_init(f_.get(), &cfg_, boot_.data(), static_cast<std::uint32_t>(boot_.size()));
+    boot_rc_ = fsw_init(f_.get(), &cfg_, boot_.empty() ? nullptr : boot_.data(), static_cast<std::uint32_t>(boot_.size()));
+    lim_tbl_acc_ = 0u;
     return boot_rc_ == FSW_OK;
 }
 
@@ -35,10 +36,22 @@ SensorLimits InProcessFswBackend::sensor_limits() const
     l.n_channels = static_cast<std::int16_t>(n);
     l.period_us = static_cast<std::int32_t>(cfg_.period_us);
     for (std::size_t i = 0; i < n && i < kMaxCounts; ++i) {
-        l.ch[i].min = r[i].min;
-        l.ch[i].max = r[i].max;
+        if (r[i].min <= r[i].max) {   // else no table: left open (ChannelLimits' defaults)
+            l.ch[i].min = r[i].min;
+            l.ch[i].max = r[i].max;
+        }
     }
     return l;
+}
+
+bool InProcessFswBackend::limits_changed(SensorLimits &lim)
+{
+    if (f_->tlm.n_tbl_acc == lim_tbl_acc_) {
+        return false;
+    }
+    lim_tbl_acc_ = f_->tlm.n_tbl_acc;
+    lim = sensor_limits();
+    return true;
 }
 
 void InProcessFswBackend::host_counters(const Counters &c)

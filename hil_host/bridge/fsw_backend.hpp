@@ -25,7 +25,8 @@ namespace bridge {
 class InProcessFswBackend final : public Backend {
 public:
     // cfg: the executive's configuration (mission, period, stale_max, boot mode); boot: the
-    // mission's table image (its encoder or a ground tool's file).
+    // mission's table image (its encoder or a ground tool's file), or empty to boot without a
+    // table (fsw_init(f, cfg, NULL, 0): the table then arrives by upload).
     InProcessFswBackend(const fsw_cfg_t &cfg, std::vector<std::uint8_t> boot);
     bool reset() override;
     bool step(const Frame &f, StepOutput &out) override;
@@ -38,8 +39,10 @@ public:
     fsw_rc_t boot_rc() const { return boot_rc_; }
     const fsw_out_t &last_out() const { return out_; }
     // The bridge validator's limits: the mission's channel ranges under the active table
-    // (fsw_sensor_ranges, the adapter's own channel map) and the executive's period.
+    // (fsw_sensor_ranges, the adapter's own channel map) and the executive's period. Without a
+    // table the ranges are open: the flight code refuses every channel itself until one commits.
     SensorLimits sensor_limits() const;
+    bool limits_changed(SensorLimits &lim) override;
     const fsw_t &fsw() const { return *f_; }
 
 private:
@@ -52,6 +55,7 @@ private:
     std::uint32_t tc_ = FSW_TC_NONE;          // telecommand for the next step only
     std::int32_t tc_arg_[FSW_TC_ARGS] = {};
     fsw_rc_t boot_rc_ = FSW_ERR_ARG;
+    std::uint32_t lim_tbl_acc_ = 0;           // n_tbl_acc when the limits were last reported
 };
 
 }  // namespace bridge

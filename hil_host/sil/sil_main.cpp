@@ -235,7 +235,7 @@ int main(int argc, char **argv)
             int rc = 1;
             {   // the node unsubscribes in its destructor: it must go before lcm_destroy
                 std::unique_ptr<bridge::InProcessFswBackend> be = sil::make_fixed_backend(scn);
-                bridge::Bridge core(*be, be->sensor_limits());
+                bridge::Bridge core(*be, sil::run_limits(scn));
                 sil::BridgeNode bn(lcm, core);
                 rc = bn.serve(idle_ms);
                 std::fprintf(stderr, "sil bridge: %s after %llu frames\n", rc == 0 ? "STOP" : "idle timeout",

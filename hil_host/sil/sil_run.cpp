@@ -116,7 +116,11 @@ void run_header(const sim::Scenario &scn, const std::string &fsw, const std::str
 std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn)
 {
     const host::MissionHost &mh = host::mission_host(scn.mission);
-    std::unique_ptr<bridge::InProcessFswBackend> be(new bridge::InProcessFswBackend(host::fsw_cfg(scn), mh.boot_image(scn)));
+    // With a table file the flight software boots without a table and takes the file by upload
+    // before its first step (run_uploads): the upload path flies in every such run, and a
+    // configuration at any period boots (no built-in table of that period is needed).
+    std::vector<std::uint8_t> boot = scn.fsw.table_file.empty() ? mh.boot_image(scn) : std::vector<std::uint8_t>{};
+    std::unique_ptr<bridge::InProcessFswBackend> be(new bridge::InProcessFswBackend(host::fsw_cfg(scn), std::move(boot)));
     if (be->boot_rc() != FSW_OK) {
         throw std::runtime_error("the " + std::string(mh.iface().name) + " boot table '" + scn.fsw.table +
                                  "' was refused by the flight loader: " +
@@ -124,6 +128,16 @@ std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scena
                                  " (scenario period_us " + std::to_string(scn.period_us) + ")");
     }
     return be;
+}
+
+bridge::SensorLimits run_limits(const sim::Scenario &scn)
+{
+    if (scn.fsw.table_file.empty()) {
+        return make_fixed_backend(scn)->sensor_limits();
+    }
+    // the file booted directly: same loader checks; run_uploads reports a refusal in words
+    bridge::InProcessFswBackend be(host::fsw_cfg(scn), upload_from_file(scn.fsw.table_file, 0.0).image);
+    return be.sensor_limits();
 }
 
 namespace {
@@ -194,7 +208,7 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
             }
         }
         bridge::Backend &be = refbe ? *refbe : static_cast<bridge::Backend &>(*fixed);
-        bridge::Bridge core(be, fixed->sensor_limits());
+        bridge::Bridge core(be, run_limits(scn));
         BridgeNode bn(lcm, core);
         const bool sync = opt.url.rfind("memq://", 0) == 0;
         PlantNode pn(lcm, scn, sync);

@@ -54,9 +54,14 @@ struct InprocResult {
 InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt);
 
 // The fixed-point flight software for a scenario: the executive booted from the mission's boot
-// table the scenario names. Throws std::runtime_error naming the refusal when the boot table does
-// not load (e.g. its period differs from the scenario's).
+// table the scenario names, or without a table when the scenario names a table file (the file
+// then arrives by upload before the first step, run_uploads). Throws std::runtime_error naming
+// the refusal when the boot table does not load (e.g. its period differs from the scenario's).
 std::unique_ptr<bridge::InProcessFswBackend> make_fixed_backend(const sim::Scenario &scn);
+
+// The bridge's sensor limits at the start of a run: the ranges of the table the run flies (the
+// table file's when the scenario names one, else the boot table's), checked by the flight loader.
+bridge::SensorLimits run_limits(const sim::Scenario &scn);
 
 // The uploads of a run: the scenario's table_file (at t = 0, before the first step) and the extra
 // ones given. The table file is first loaded into a scratch copy of the flight software through

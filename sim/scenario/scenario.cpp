@@ -439,6 +439,13 @@ Scenario parse_scenario_with(const std::string &yaml_text, const std::string &so
                 if (s.fsw.table_file.empty()) {
                     r.fail("fsw.table_file", f["table_file"], "must name a table image file");
                 }
+                // The file is the whole table: the flight software boots without one and takes
+                // it by upload, so a built-in table or its tuning keys would be silently unused.
+                for (const std::string &k : plus({"table"}, sec->fsw_keys())) {
+                    if (f[k]) {
+                        r.fail("fsw." + k, f[k], "cannot be combined with fsw.table_file (the file is the whole table)");
+                    }
+                }
             }
         }
         parse_faults_lockstep(root, r, *sec, s);

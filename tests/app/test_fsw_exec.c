@@ -426,6 +426,54 @@ UT_TEST(deterministic_and_instances_independent)
     UT_UEQ(diff, 0u);
 }
 
+/* A generic image booted without a table (fsw_init(f, cfg, NULL, 0)): nothing is counted as
+   refused, the channels are refused (no ranges), and the first step goes SAFE with NO_TABLE.
+   The same boot with the table uploaded before the first step commits it at that step's boundary
+   and enters the boot mode directly, bit-identical to booting on the same table from then on
+   except for the table counters. NULL with a length is still an argument error. */
+UT_TEST(tableless_boot_waits_for_an_upload)
+{
+    fsw_cfg_t c = cfg50();
+    fsw_range_t r[FSW_IN_MAX];
+    uint32_t n = 0u;
+    uint32_t why = 0u;
+    uint32_t len;
+    int64_t k;
+    fsw_in_t in = frame(1, CNT_1DEG_S, -CNT_1DEG_S);
+    UT_UEQ(fsw_init(&g_a, &c, NULL, 4u), FSW_ERR_ARG);
+    UT_UEQ(fsw_init(&g_a, &c, NULL, 0u), FSW_OK);
+    UT_UEQ(g_a.tlm.n_tbl_rej, 0u);
+    UT_UEQ(g_a.tlm.tbl_reason, 0u);
+    fsw_sensor_ranges(&g_a, r, &n);
+    UT_UEQ(n, 2u);
+    UT_CHECK(r[0].min > r[0].max);                 /* empty range: nothing accepted */
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_TRUE((g_oa.health & FSW_H_NO_TABLE) != 0u);
+    UT_UEQ(g_oa.tlm.n_tbl_rej, 0u);
+    UT_EQ(g_oa.act_cnt[0], 0);
+    /* the upload before step 1: commit at its boundary, DETUMBLE from step 1 */
+    len = obs_table_encode(&OBS_TBL_50HZ_PHYS, 4u, g_img, sizeof(g_img));
+    UT_UEQ(fsw_init(&g_a, &c, NULL, 0u), FSW_OK);
+    UT_UEQ(upload(&g_a, g_img, len, 4u, 64u, &why), FSW_OK);
+    UT_UEQ(boot_obs(&g_b, &c, &OBS_TBL_50HZ_PHYS, 4u), FSW_OK);
+    for (k = 1; k <= 100; k++) {
+        in = frame(k, CNT_1DEG_S - (int32_t)(k * 53), CNT_1DEG_S + (int32_t)(k * 11));
+        fsw_step(&g_a, &in, &g_oa);
+        fsw_step(&g_b, &in, &g_ob);
+        UT_CHECK_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+        UT_CHECK_EQ(g_oa.act_cnt[0], g_ob.act_cnt[0]);
+        UT_CHECK_EQ(g_oa.act_cnt[1], g_ob.act_cnt[1]);
+        UT_CHECK_UEQ(g_oa.health & ~FSW_H_TBL_NEW, g_ob.health);
+    }
+    UT_UEQ(g_oa.tlm.n_tbl_acc, 1u);
+    UT_UEQ(g_oa.tlm.n_tbl_rej, 0u);
+    UT_UEQ(g_oa.tlm.tbl_revision, 4u);
+    UT_UEQ(g_oa.tlm.n_safe, 0u);
+    UT_UEQ(g_oa.tlm.n_chan_rej, 0u);
+    fsw_sensor_ranges(&g_a, r, &n);
+    UT_CHECK(r[0].min < r[0].max);
+}
 
 int main(void)
 {
@@ -441,6 +489,7 @@ int main(void)
         UT_CASE(scrub_failure_goes_to_safe),
         UT_CASE(telemetry_encodes_to_its_fixed_size),
         UT_CASE(deterministic_and_instances_independent),
+        UT_CASE(tableless_boot_waits_for_an_upload),
     };
     return UT_RUN("fsw_exec", cases);
 }

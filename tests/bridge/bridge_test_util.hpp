@@ -40,8 +40,18 @@ public:
         return true;
     }
     const char *name() const override { return "fake"; }
+    bool limits_changed(bridge::SensorLimits &lim) override
+    {
+        if (!new_limits) {
+            return false;
+        }
+        lim = *new_limits;
+        new_limits = nullptr;
+        return true;
+    }
     std::vector<bridge::Frame> seen;
     bool fail_next = false;
+    const bridge::SensorLimits *new_limits = nullptr;   // reported after the next step
 };
 
 // Frame k with 2 channels: small, smooth gyro-like counts (triangle waves of +-20 and +-12

@@ -170,6 +170,32 @@ void gate_refuses_implausible_jump(void **)
 }
 
 // Out-of-range counts: last good value, STALE bit for the flight code, range_rej.
+// A table commit in the backend changes the channel ranges: the bridge applies them from the
+// frame after the step that reported them, and keeps the last good values across the change.
+void limits_follow_the_backend_table(void **)
+{
+    bt::FakeBackend be;
+    Bridge br(be, limits_pm(100));
+    const SensorLimits wide = limits_pm(1000);
+    Frame f = bt::make_frame(0, kPeriod);
+    f.counts[0] = 60;
+    be.new_limits = &wide;                       // reported after this step
+    (void)br.on_frame(f);
+    assert_int_equal(be.seen[0].counts[0], 60);
+    f = bt::make_frame(1, kPeriod);
+    f.counts[0] = 500;                           // outside the old range, inside the new
+    (void)br.on_frame(f);
+    assert_int_equal(be.seen[1].counts[0], 500);
+    assert_int_equal(be.seen[1].status[0], 0);
+    assert_int_equal(br.counters().range_rej, 0);
+    f = bt::make_frame(2, kPeriod);
+    f.counts[0] = 1001;                          // outside the new range: last good is 500
+    (void)br.on_frame(f);
+    assert_int_equal(be.seen[2].counts[0], 500);
+    assert_int_equal(be.seen[2].status[0], kStatusStale);
+    assert_int_equal(br.counters().range_rej, 1);
+}
+
 void validator_keeps_last_good(void **)
 {
     bt::FakeBackend be;
@@ -486,6 +512,7 @@ int main(void)
         cmocka_unit_test(gate_refuses_implausible_jump),
         cmocka_unit_test(telecommands_wait_for_their_frame),
         cmocka_unit_test(validator_keeps_last_good),
+        cmocka_unit_test(limits_follow_the_backend_table),
         cmocka_unit_test(si_adapter_values),
         cmocka_unit_test(si_adapter_frames),
         cmocka_unit_test(si_nan_never_steps),

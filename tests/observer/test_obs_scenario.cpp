@@ -75,6 +75,8 @@ SIM_TEST(test_scenario_errors)
     expect_scenario_error("name: t\nmission: detumble\nmodel: M-phys\nduration_s: 10\n",
                           {"bad.yaml", "'sigma'", "missing required key"});
     expect_scenario_error(base + "k2_true_per_s2: abc\n", {"'k2_true_per_s2'", "not a number", "abc"});
+    expect_scenario_error(base + "fsw: {table_file: t.bin, k_hat0: 0.01}\n",
+                          {"'fsw.k_hat0'", "cannot be combined with fsw.table_file"});
     expect_scenario_error(base + "k2_true_per_s2: .nan\n", {"'k2_true_per_s2'", "finite"});
     expect_scenario_error(base + "gyro:\n  noise_radps: -1e-5\n", {"'gyro.noise_radps'", "out of range"});
     expect_scenario_error(base + "gyro:\n  seed: -3\n", {"'gyro.seed'", "non-negative"});

@@ -69,6 +69,8 @@ SIM_TEST(test_core_errors)
                           {"'duration_s'", "shorter than one period"});
     expect_scenario_error(base + "fsw: {table: obs_100hz}\n", {"'fsw.table'", "unknown DETUMBLE table", "obs_50hz_phys"});
     expect_scenario_error(base + "fsw: {table_file: ''}\n", {"'fsw.table_file'", "must name"});
+    expect_scenario_error(base + "fsw: {table: obs_50hz_phys, table_file: t.bin}\n",
+                          {"'fsw.table'", "cannot be combined with fsw.table_file"});
     expect_scenario_error(base + "faults: {drop_ppm: 2000000}\n", {"'faults.drop_ppm'", "out of range"});
     expect_scenario_error(base + "faults: {nan_channel: 16}\n", {"'faults.nan_channel'", "out of range"});
     expect_scenario_error(base + "faults: {gyro_nan_s: [1, 2]}\n", {"'faults.gyro_nan_s'", "unknown key"});

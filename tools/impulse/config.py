@@ -200,14 +200,6 @@ def main(a):
           % (w, 1 / w, an, an / w ** 2, an / w, cfg.period_us * 1e-6,
              (", grid %g ms" % (cfg.subtick_us * 1e-3)) if cfg.subtick_us else "", p["plan_lead"],
              p["plan_iter_per_step"], "on" if cfg.cal_enable else "off"))
-    boot = {per: name.lower().replace("imp_tbl_", "imp_") for name, per, _, _ in reversed(ctable.TABLES)}
-    if cfg.period_us not in boot:
-        print("  note: `sil run` boots the flight code on a built-in table of the scenario's period before it uploads "
-              "this image, and no built-in table has period_us %d (%s): the SIL cannot fly it"
-              % (cfg.period_us, ", ".join("%s %d" % (v, k) for k, v in sorted(boot.items()))))
-    elif boot[cfg.period_us] != "imp_default":
-        print("  note: name the built-in table of the same period in the scenario, fsw: {table: %s, table_file: ...}"
-              % boot[cfg.period_us])
     print("  scenario: cw: {omega_radps: %r, a_nom_mps2: %r, t_min_us: %d%s}, period_us: %d"
           % (w, an, cfg.t_min_us, (", subtick_us: %d" % cfg.subtick_us) if cfg.subtick_us else "", cfg.period_us))
     return 0

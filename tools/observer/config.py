@@ -219,14 +219,6 @@ def main(a):
              fig["rho_k2_0.01"], p["q_phi0"], p["q_phik"], p["q_gam0"], p["q_gamk"], p["q_d"], p["q_w"]))
     for n in fig["notes"]:
         print("  note: %s (the poles are placed; their robustness is not optimised)" % n)
-    boot = {round(fl.H_FLIGHT * 1e6): "obs_50hz_phys", round(pp.H_PAPER * 1e6): "obs_5hz_paper"}
-    if cfg.period_us not in boot:
-        print("  note: `sil run` boots the flight code on a built-in table of the scenario's period before it uploads "
-              "this image, and no built-in table has period_us %d (%s): the SIL cannot fly it"
-              % (cfg.period_us, ", ".join("%s %d" % (v, k) for k, v in sorted(boot.items()))))
-    elif boot[cfg.period_us] != "obs_50hz_phys":
-        print("  note: name the built-in table of the same period in the scenario, fsw: {table: %s, table_file: ...}"
-              % boot[cfg.period_us])
     print("  scenario: model: %s, sigma: %d, j_factor: %r, period_us: %d, gyro: {lsb_shift: %d, max_cnt: %d}, "
           "gimbal: {lsb_shift: %d, hw_limit_radps: %r}"
           % (cfg.model, cfg.sigma, cfg.J / m.J0, cfg.period_us, cfg.gyro_lsb_shift, cfg.gyro_max_cnt,
