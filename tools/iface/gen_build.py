@@ -259,6 +259,27 @@ def registries(ms):
     return {"sim_missions_gen.cpp": "\n".join(sim), "host_missions_gen.cpp": "\n".join(host)}
 
 
+_PAT = {"u8": "tlm_pat_u8", "u16": "tlm_pat_u16", "u32": "tlm_pat_u32", "i32": "tlm_pat_i32", "i64": "tlm_pat_i64"}
+
+
+def tlm_pattern(ms):
+    """tests/iface: sets field i of each mission's layout to the pattern value of i (its lvalue in
+    fsw_tlm_t), so the C encoder, the C++ reader and the Python decoder can be compared field by
+    field (tests/iface/tlm_pattern.h holds the pattern)."""
+    c = ["/* " + BANNER + " */", "#include \"fsw_exec.h\"", "#include \"tlm_pattern.h\"", "",
+         "void tlm_pattern_fill(fsw_tlm_t *t, uint32_t mission)", "{", "    t->mission = mission;",
+         "    switch (mission) {"]
+    for m in ms:
+        nhead = len(m.layout.fields) - len(m.iface.tlm)
+        c.append("    case FSW_MISSION_%s:" % m.name)
+        for i, f in enumerate(m.layout.fields):
+            lv = f.c if i < nhead else "t->m.%s.%s" % (m.name.lower(), f.c[3:])
+            c.append("        %s = %s(%du);" % (lv, _PAT[f.type], i))
+        c.append("        break;")
+    c += ["    default:", "        break;", "    }", "}", ""]
+    return {"tlm_pattern_gen.c": "\n".join(c)}
+
+
 def cmake(ms):
     allm = missions()
     return "\n".join([
@@ -275,6 +296,7 @@ def main(names, out, host=True, with_cmake=False):
     if host:
         files.update(host_tables(ms))
         files.update(registries(ms))
+        files.update(tlm_pattern(ms))
     if with_cmake:
         files["missions.cmake"] = cmake(ms)
     os.makedirs(out, exist_ok=True)
