@@ -1,0 +1,38 @@
+// The @MISSION@ scenario section (sim/@module@/@module@_section.cpp): the shipped scenario reads,
+// and every bad key or value fails naming the file, the key and the reason.
+#include <string>
+
+#include "@module@/@module@_section.hpp"
+#include "scenario_test.hpp"
+
+namespace {
+const char *const kMinimal = "name: t\nmission: @mission@\nduration_s: 10\n";
+}
+
+SIM_TEST(shipped_scenario_reads)
+{
+    const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/@module@_nominal.yaml");
+    EXPECT_TRUE(s.mission == "@MISSION@");
+    EXPECT_EQ_INT(s.period_us, 100000);
+    EXPECT_TRUE(s.fsw.table == "@prefix@_default");
+    const sim::@Class@Setup &b = s.mission_part<sim::@Class@Scenario>().body;
+    EXPECT_NEAR(b.inertia_kgm2, 10.0, 0.0);
+    EXPECT_NEAR(b.w0_radps, 0.2, 0.0);
+    EXPECT_EQ_INT(b.gyro_seed, 1);
+}
+
+SIM_TEST(bad_values_are_named)
+{
+    const std::string base = kMinimal;
+    expect_scenario_error(base + "@module@: {inertia: 3}\n", {"bad.yaml", "'@module@.inertia'", "unknown key"});
+    expect_scenario_error(base + "@module@: {inertia_kgm2: 0}\n", {"'@module@.inertia_kgm2'", "out of range"});
+    expect_scenario_error(base + "@module@: {gyro: {seed: -1}}\n", {"'@module@.gyro.seed'"});
+    expect_scenario_error(base + "plant: sail\n", {"'plant'", "flies plant: @module@"});
+    expect_scenario_error(base + "fsw: {table: nope}\n", {"'fsw.table'", "@prefix@_default"});
+}
+
+int main()
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(shipped_scenario_reads), cmocka_unit_test(bad_values_are_named)};
+    return cmocka_run_group_tests_name("@module@_scenario", tests, nullptr, nullptr);
+}

@@ -1,0 +1,26 @@
+"""Table images of the @module@ boot tables, packed with Python struct (an independent oracle for
+the flight codec, fsw/@module@/@prefix@_table.c):
+
+    python -m tools.@module@ image --table NAME [--revision N] [--set FIELD=INT ...] -o FILE
+    python -m tools.@module@ image --all DIR
+
+--set replaces a field's raw integer before the CRC; hdr.* fields replace header words after
+it (for tests of the loader's header and CRC checks). tools/table/image_writer.py does the work.
+"""
+from tools import iface
+from tools.table import image_writer
+
+from . import design
+
+I32MAX = 2 ** 31 - 1
+# (field, struct code, count, lo, hi) in wire order, with the flight loader's limits (@PREFIX@_LIMS)
+PAYLOAD = [("period_us", "I", 1, 1000, 1000000), ("rate_max_cnt", "i", 1, 1, I32MAX),
+           ("gain_q16", "i", 1, 1, 1 << 24), ("u_max_cnt", "i", 1, 1, 1 << 24), ("n_sat", "H", 1, 1, 65535),
+           ("spare", "H", 1, 0, 0)]
+_MOD = iface.mission("@MISSION@").iface
+LAYOUT = image_writer.Layout(_MOD.table_id, _MOD.table_layout, PAYLOAD, 20, (), "fsw/@module@/@prefix@_table.c")
+NAMES = [n for n, _, _ in design.TABLES]
+
+
+def main(args):
+    return image_writer.main(args, LAYOUT, NAMES, design.table)
