@@ -1,4 +1,5 @@
-"""python -m tools.iface {c [--check] | build --missions A,B|all --out DIR [--no-host] | show [MISSION]}
+"""python -m tools.iface {c [--check] | build --missions A,B|all --out DIR [--no-host] |
+   pattern --missions A,B|all --out FILE | show [MISSION]}
 (from the repo root). README 'Design: one module, one folder'."""
 import argparse
 import sys
@@ -14,6 +15,9 @@ def main(argv=None):
     b.add_argument("--out", required=True)
     b.add_argument("--no-host", action="store_true", help="flight dispatch only (cross builds)")
     b.add_argument("--cmake", action="store_true", help="also write missions.cmake (the configured lists)")
+    t = sub.add_parser("pattern", help="write the telemetry layout test's field filler (tests/iface)")
+    t.add_argument("--missions", required=True, help="comma-separated mission names, or 'all'")
+    t.add_argument("--out", required=True, help="the C file to write")
     s = sub.add_parser("show", help="print a mission's telemetry layout (or the registry)")
     s.add_argument("mission", nargs="?")
     a = ap.parse_args(argv)
@@ -22,9 +26,11 @@ def main(argv=None):
         if a.cmd == "c":
             from . import gen_c
             return gen_c.main(a.check)
-        if a.cmd == "build":
+        if a.cmd in ("build", "pattern"):
             from . import gen_build
             names = None if a.missions.strip().lower() == "all" else [x.strip() for x in a.missions.split(",") if x.strip()]
+            if a.cmd == "pattern":
+                return gen_build.write_pattern(names, a.out)
             return gen_build.main(names, a.out, host=not a.no_host, with_cmake=a.cmake)
         from . import missions, mission
         if a.mission is None:

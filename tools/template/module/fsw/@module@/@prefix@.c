@@ -26,7 +26,11 @@ fsw_rc_t @prefix@_params_check(const @prefix@_params_t *p, uint32_t *why)
         if (p->n_sat == 0u) {
             w |= @PREFIX@_WHY_FAULT;
         }
-        rc = (w == 0u) ? FSW_OK : FSW_ERR_RANGE;
+        if (w == 0u) {
+            rc = FSW_OK;
+        } else {
+            rc = FSW_ERR_RANGE;
+        }
     }
     if (why != NULL) {
         *why = w;

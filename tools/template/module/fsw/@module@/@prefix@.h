@@ -21,8 +21,8 @@
 #include "fx_rc.h"
 #include "@prefix@_ids.h"
 
-#define @PREFIX@_GAIN_MAX_Q16 (1 << 24)   /* K <= 4096 N m s; keeps gain * rate within int64 */
-#define @PREFIX@_U_MAX_CNT    (1 << 24)   /* 256 N m */
+#define @PREFIX@_GAIN_MAX_Q16 ((int32_t)16777216)   /* 2^24: K <= 4096 N m s; gain * rate within int64 */
+#define @PREFIX@_U_MAX_CNT    ((int32_t)16777216)   /* 2^24 counts = 256 N m */
 
 typedef struct {
     uint32_t period_us;     /* the step period the table was designed for */

@@ -23,8 +23,8 @@
 static const fsw_field_lim_t @PREFIX@_LIMS[] = {
     {0u, FSW_FT_U32, 1000, 1000000},                    /* 0 period_us */
     {4u, FSW_FT_I32, 1, I32MAX},                        /* 1 rate_max_cnt */
-    {8u, FSW_FT_I32, 1, @PREFIX@_GAIN_MAX_Q16},         /* 2 gain_q16 */
-    {12u, FSW_FT_I32, 1, @PREFIX@_U_MAX_CNT},           /* 3 u_max_cnt */
+    {8u, FSW_FT_I32, 1, (int64_t)@PREFIX@_GAIN_MAX_Q16},    /* 2 gain_q16 */
+    {12u, FSW_FT_I32, 1, (int64_t)@PREFIX@_U_MAX_CNT},      /* 3 u_max_cnt */
     {16u, FSW_FT_U16, 1, 65535},                        /* 4 n_sat */
     {18u, FSW_FT_U16, 0, 0},                            /* 5 spare */
 };
@@ -69,7 +69,11 @@ fsw_rc_t @prefix@_table_decode(const uint8_t *payload, uint32_t len, uint32_t re
         p->n_sat = fsw_rd_u16(&r);
         (void)fsw_rd_u16(&r);   /* spare */
         p->revision = revision;
-        rc = ((!r.err) && (r.pos == len)) ? FSW_OK : FSW_ERR_DECODE;
+        if ((!r.err) && (r.pos == len)) {
+            rc = FSW_OK;
+        } else {
+            rc = FSW_ERR_DECODE;
+        }
     }
     return rc;
 }
