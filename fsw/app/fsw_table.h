@@ -144,7 +144,7 @@ const uint8_t *fsw_table_payload(const fsw_table_t *t, uint32_t *len);
 uint32_t fsw_table_revision(const fsw_table_t *t);
 /* Writes the 16-byte header of an image whose payload (payload_len bytes) already follows it at
    img + FSW_TABLE_HDR_BYTES: table id, layout version, length, revision and the payload CRC.
-   The module codecs (fsw_obs_table.c, fsw_imp_table.c) build their images with it. */
+   The module codecs (fsw/<module>/<prefix>_table.c) build their images with it. */
 void     fsw_table_write_header(uint8_t *img, uint16_t table_id, uint16_t layout, uint32_t payload_len,
                                 uint32_t revision);
 

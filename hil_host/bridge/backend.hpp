@@ -1,7 +1,7 @@
 // backend.hpp — where the flight software runs, behind one call (ARCHITECTURE "hil_host").
 //
 // The bridge core hands a validated frame k to step() and gets command k and the telemetry
-// bytes back. InProcessObsBackend (obs_backend.hpp) runs the flight code in this process (SIL);
+// bytes back. InProcessFswBackend (fsw_backend.hpp) runs the flight code in this process (SIL);
 // a serial PIL/HIL backend (framed link to a board or QEMU) implements the same interface, so
 // the LCM node never changes.
 #ifndef HIL_BRIDGE_BACKEND_HPP

@@ -1,5 +1,5 @@
 // Golden per-step comparison: fixed-point obs_step against the Eigen double reference
-// (sim/reference/obs_ref), spec 10-observer §5 "single-step vectors".
+// (sim/observer/obs_ref), spec 10-observer §5 "single-step vectors".
 //
 // At every step of a closed loop (the fixed-point code drives the exact true plant), the
 // fixed-point state before the step is read as real values and loaded into the reference; both

@@ -7,7 +7,7 @@
 // Bounds are the spec's acceptance figures (expected values in comments). The one place where
 // the shipped design does not reach a spec figure (the gyro-noise tails, fsw/observer/README.md
 // "Open item") is checked against the double-precision reference FSW run on the same scenario
-// (the same loop with sim/reference/obs_ref in place of the flight code): the fixed-point loop
+// (the same loop with sim/observer/obs_ref in place of the flight code): the fixed-point loop
 // must be no noisier than the double loop by more than 25 %, and the gap to the spec is printed
 // as OPEN. That check fails on a fixed-point regression; it cannot hide a design change because
 // the reference shares the tables.

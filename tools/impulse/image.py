@@ -8,7 +8,7 @@ IMP_TBL_SUB1MS of fsw/impulse/imp_tables.c). The integers are the ones `ctable` 
 initialisers: `params()` takes them from ctable's own computation (`ctable.fields`, the function
 that renders the initialisers) and requires its field list to be exactly this layout plus
 `revision`. They are packed here with Python struct, independently of the C encoder, in the wire
-layout documented in fsw/app/fsw_imp_table.c (spec 00 §3.2, 50-impulse §5.7):
+layout documented in fsw/impulse/imp_table.c (spec 00 §3.2, 50-impulse §5.7):
 
     header  <HHIII  table_id 0x0B04, layout_version 1, payload length 176, revision,
                     zlib.crc32(payload)
@@ -38,7 +38,7 @@ ALPHA_MIN, ALPHA_MAX = image_writer.q_rat(4, 5, 30), image_writer.q_rat(6, 5, 30
 TAU_LO, TAU_HI = image_writer.q_rat(1, 5, 29), 2 << 29
 HALF_Q30 = image_writer.q_rat(1, 2, 30)
 
-# (imp_params_t field, struct code, count, lo, hi) in wire order (fsw/app/fsw_imp_table.c header
+# (imp_params_t field, struct code, count, lo, hi) in wire order (fsw/impulse/imp_table.c header
 # comment), with the flight loader's limits (IMP_LIMS of fsw/impulse/imp_table.c) for every entry.
 PAYLOAD = [
     ("period_us", "I", 1, 1000, US_MAX), ("subtick_us", "I", 1, 0, US_MAX), ("t_min_us", "I", 1, 0, US_MAX),

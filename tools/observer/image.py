@@ -7,7 +7,7 @@ The integers are the ones `ctable` writes into the C boot tables (fsw/observer/o
 `params()` takes them from ctable's own computation (its constants, q_int and design tables,
 as table_c does) and cross-checks every field against the initialiser text table_c renders.
 They are packed here with Python struct, independently of the C encoder, in the wire layout
-documented in fsw/app/fsw_obs_table.c (spec 00 §3.2, 10-observer §4.6):
+documented in fsw/observer/obs_table.c (spec 00 §3.2, 10-observer §4.6):
 
     header  <HHIII  table_id 0x0B01, layout_version 1, payload length 646, revision,
                     zlib.crc32(payload)
@@ -33,7 +33,7 @@ EST = {"OBS_EST_EKF": 0, "OBS_EST_CONST_W": 2}
 
 I32MAX = 2 ** 31 - 1
 
-# (obs_params_t field, struct code, count[, lo, hi]) in wire order (fsw/app/fsw_obs_table.c header
+# (obs_params_t field, struct code, count[, lo, hi]) in wire order (fsw/observer/obs_table.c header
 # comment), with the flight loader's limits (OBS_LIMS of fsw/observer/obs_table.c) where it has
 # any: every scalar and the ls/p0/qd vectors; matrix entries span the whole int32 range.
 PAYLOAD = [
