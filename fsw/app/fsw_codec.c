@@ -145,6 +145,22 @@ void fsw_wr_i32(fsw_wr_t *w, int32_t v)
     codec_put(w, (uint64_t)(uint32_t)v, 4u);
 }
 
+void fsw_wr_i32n(fsw_wr_t *w, const int32_t *v, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0u; i < n; i++) {
+        fsw_wr_i32(w, v[i]);
+    }
+}
+
+void fsw_rd_i32n(fsw_rd_t *r, int32_t *v, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0u; i < n; i++) {
+        v[i] = fsw_rd_i32(r);
+    }
+}
+
 void fsw_wr_i64(fsw_wr_t *w, int64_t v)
 {
     codec_put(w, (uint64_t)v, 8u);

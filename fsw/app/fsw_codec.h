@@ -48,6 +48,9 @@ void     fsw_wr_u8(fsw_wr_t *w, uint8_t v);
 void     fsw_wr_u16(fsw_wr_t *w, uint16_t v);
 void     fsw_wr_u32(fsw_wr_t *w, uint32_t v);
 void     fsw_wr_i32(fsw_wr_t *w, int32_t v);
+/* n int32 values in a row (the tables' vectors and matrices); an overrun sets err as for one. */
+void     fsw_wr_i32n(fsw_wr_t *w, const int32_t *v, uint32_t n);
+void     fsw_rd_i32n(fsw_rd_t *r, int32_t *v, uint32_t n);
 void     fsw_wr_i64(fsw_wr_t *w, int64_t v);
 
 #endif /* FSW_APP_CODEC_H */

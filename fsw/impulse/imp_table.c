@@ -152,22 +152,6 @@ const fsw_table_desc_t IMP_TBL_DESC = {
     IMP_RELS, (uint32_t)(sizeof(IMP_RELS) / sizeof(IMP_RELS[0])),
 };
 
-static void imp_wr_vec(fsw_wr_t *w, const int32_t *v, uint32_t n)
-{
-    uint32_t i;
-    for (i = 0u; i < n; i++) {
-        fsw_wr_i32(w, v[i]);
-    }
-}
-
-static void imp_rd_vec(fsw_rd_t *r, int32_t *v, uint32_t n)
-{
-    uint32_t i;
-    for (i = 0u; i < n; i++) {
-        v[i] = fsw_rd_i32(r);
-    }
-}
-
 uint32_t imp_table_encode(const imp_params_t *p, uint32_t revision, uint8_t *img, uint32_t cap)
 {
     uint32_t n = 0u;
@@ -195,7 +179,7 @@ uint32_t imp_table_encode(const imp_params_t *p, uint32_t revision, uint8_t *img
         fsw_wr_i32(&w, p->tauf_min_q29);
         fsw_wr_i32(&w, p->tauf_max_q29);
         fsw_wr_i32(&w, p->w_v_q28);
-        imp_wr_vec(&w, p->alpha_q30, IMP_NTHR);
+        fsw_wr_i32n(&w, p->alpha_q30, IMP_NTHR);
         fsw_wr_i32(&w, p->k_pos_m);
         fsw_wr_u8(&w, p->k_pos_sh);
         fsw_wr_u8(&w, p->k_vel_sh);
@@ -264,7 +248,7 @@ fsw_rc_t imp_table_decode(const uint8_t *payload, uint32_t len, uint32_t revisio
         q->tauf_min_q29 = fsw_rd_i32(&r);
         q->tauf_max_q29 = fsw_rd_i32(&r);
         q->w_v_q28 = fsw_rd_i32(&r);
-        imp_rd_vec(&r, q->alpha_q30, IMP_NTHR);
+        fsw_rd_i32n(&r, q->alpha_q30, IMP_NTHR);
         q->k_pos_m = fsw_rd_i32(&r);
         q->k_pos_sh = fsw_rd_u8(&r);
         q->k_vel_sh = fsw_rd_u8(&r);

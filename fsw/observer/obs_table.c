@@ -106,22 +106,6 @@ const fsw_table_desc_t OBS_TBL_DESC = {
     OBS_RELS, (uint32_t)(sizeof(OBS_RELS) / sizeof(OBS_RELS[0])),
 };
 
-static void wr_vec(fsw_wr_t *w, const int32_t *v, uint32_t n)
-{
-    uint32_t i;
-    for (i = 0u; i < n; i++) {
-        fsw_wr_i32(w, v[i]);
-    }
-}
-
-static void rd_vec(fsw_rd_t *r, int32_t *v, uint32_t n)
-{
-    uint32_t i;
-    for (i = 0u; i < n; i++) {
-        v[i] = fsw_rd_i32(r);
-    }
-}
-
 /* int8 <-> int32 without an implementation-defined narrowing (range is checked first). */
 static int8_t i8_of(int32_t v)
 {
@@ -172,15 +156,15 @@ uint32_t obs_table_encode(const obs_params_t *p, uint32_t revision, uint8_t *img
         for (i = 0u; i < OBS_NZ; i++) {
             tmp[i] = (int32_t)p->ls[i];
         }
-        wr_vec(&w, tmp, OBS_NZ);
-        wr_vec(&w, p->p0_q30, OBS_NZ);
-        wr_vec(&w, p->qd_q30, OBS_NZ);
-        wr_vec(&w, p->phi0, OBS_NX * OBS_NX);
-        wr_vec(&w, p->phik, OBS_NX * OBS_NX);
-        wr_vec(&w, p->gam0, OBS_NX * OBS_NU);
-        wr_vec(&w, p->gamk, OBS_NX * OBS_NU);
-        wr_vec(&w, p->d, OBS_NU * OBS_NX);
-        wr_vec(&w, p->w, OBS_NZ * OBS_NY);
+        fsw_wr_i32n(&w, tmp, OBS_NZ);
+        fsw_wr_i32n(&w, p->p0_q30, OBS_NZ);
+        fsw_wr_i32n(&w, p->qd_q30, OBS_NZ);
+        fsw_wr_i32n(&w, p->phi0, OBS_NX * OBS_NX);
+        fsw_wr_i32n(&w, p->phik, OBS_NX * OBS_NX);
+        fsw_wr_i32n(&w, p->gam0, OBS_NX * OBS_NU);
+        fsw_wr_i32n(&w, p->gamk, OBS_NX * OBS_NU);
+        fsw_wr_i32n(&w, p->d, OBS_NU * OBS_NX);
+        fsw_wr_i32n(&w, p->w, OBS_NZ * OBS_NY);
         if ((!w.err) && (w.pos == OBS_TBL_PAYLOAD)) {
             fsw_table_write_header(img, (uint16_t)OBS_TBL_ID, (uint16_t)OBS_TBL_LAYOUT, OBS_TBL_PAYLOAD,
                                    revision);
@@ -228,18 +212,18 @@ fsw_rc_t obs_table_decode(const uint8_t *payload, uint32_t len, uint32_t revisio
         q->p_floor_q30 = fsw_rd_i32(&r);
         q->p_ceil_q30 = fsw_rd_i32(&r);
         q->d2_max_q16 = fsw_rd_i32(&r);
-        rd_vec(&r, tmp, OBS_NZ);
+        fsw_rd_i32n(&r, tmp, OBS_NZ);
         for (i = 0u; i < OBS_NZ; i++) {
             q->ls[i] = i8_of(tmp[i]);
         }
-        rd_vec(&r, q->p0_q30, OBS_NZ);
-        rd_vec(&r, q->qd_q30, OBS_NZ);
-        rd_vec(&r, q->phi0, OBS_NX * OBS_NX);
-        rd_vec(&r, q->phik, OBS_NX * OBS_NX);
-        rd_vec(&r, q->gam0, OBS_NX * OBS_NU);
-        rd_vec(&r, q->gamk, OBS_NX * OBS_NU);
-        rd_vec(&r, q->d, OBS_NU * OBS_NX);
-        rd_vec(&r, q->w, OBS_NZ * OBS_NY);
+        fsw_rd_i32n(&r, q->p0_q30, OBS_NZ);
+        fsw_rd_i32n(&r, q->qd_q30, OBS_NZ);
+        fsw_rd_i32n(&r, q->phi0, OBS_NX * OBS_NX);
+        fsw_rd_i32n(&r, q->phik, OBS_NX * OBS_NX);
+        fsw_rd_i32n(&r, q->gam0, OBS_NX * OBS_NU);
+        fsw_rd_i32n(&r, q->gamk, OBS_NX * OBS_NU);
+        fsw_rd_i32n(&r, q->d, OBS_NU * OBS_NX);
+        fsw_rd_i32n(&r, q->w, OBS_NZ * OBS_NY);
         q->revision = revision;
         if ((!r.err) && (r.pos == len)) {
             rc = FSW_OK;

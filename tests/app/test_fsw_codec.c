@@ -172,6 +172,37 @@ UT_TEST(codec_seek_and_null)
     fsw_wr_u32(NULL, 0u);
 }
 
+/* n int32 in a row: the same bytes as n single writes; 9 bytes of room take two values and
+   set err on the third, which leaves the cursor and the ninth byte alone. */
+UT_TEST(codec_i32_vectors)
+{
+    static const int32_t v[3] = {-2, INT32_MAX, 0x01020304};
+    static const uint8_t want[8] = {0xFEu, 0xFFu, 0xFFu, 0xFFu, 0xFFu, 0xFFu, 0xFFu, 0x7Fu};
+    uint8_t b[9];
+    int32_t back[3] = {0, 0, 0};
+    fsw_wr_t w;
+    fsw_rd_t r;
+    size_t i;
+    for (i = 0u; i < NELEM(b); i++) {
+        b[i] = 0xEEu;
+    }
+    fsw_wr_init(&w, b, (uint32_t)sizeof b);
+    fsw_wr_i32n(&w, v, 3u);
+    UT_TRUE(w.err);
+    UT_UEQ(w.pos, 8u);
+    for (i = 0u; i < NELEM(want); i++) {
+        UT_CHECK_UEQ(b[i], want[i]);
+    }
+    UT_UEQ(b[8], 0xEEu);
+    fsw_rd_init(&r, b, 8u);
+    fsw_rd_i32n(&r, back, 2u);
+    UT_TRUE(!r.err);
+    UT_EQ(back[0], -2);
+    UT_EQ(back[1], INT32_MAX);
+    fsw_rd_i32n(&r, back, 1u);
+    UT_TRUE(r.err);
+}
+
 UT_TEST(crc32_table_check_values)
 {
     /* zlib/IEEE check value, and the payload of the test table image used in
@@ -191,7 +222,7 @@ int main(void)
         UT_CASE(codec_le_byte_layout), UT_CASE(codec_round_trip_edges),
         UT_CASE(codec_round_trip_random), UT_CASE(codec_read_overrun_is_sticky_and_in_bounds),
         UT_CASE(codec_write_overrun_touches_nothing), UT_CASE(codec_seek_and_null),
-        UT_CASE(crc32_table_check_values),
+        UT_CASE(crc32_table_check_values), UT_CASE(codec_i32_vectors),
     };
     return UT_RUN("fsw_codec", cases);
 }
