@@ -169,7 +169,7 @@ void check_table_image(const sim::Scenario &scn, const Upload &u)
         throw std::invalid_argument("table file '" + u.what + "' (table id " + id + ") refused by the " +
                                     std::string(mh.iface().name) + " flight loader: " +
                                     host::describe_reason(mh.iface(), static_cast<std::uint32_t>(ack.reason)) +
-                                    "; the flight software keeps its boot table");
+                                    "; the run is not started");
     }
 }
 
