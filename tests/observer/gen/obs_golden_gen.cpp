@@ -9,7 +9,7 @@
 //                      nominal with the command vector-limited at 1.2 deg/s), whose vectors
 //                      carry CMD_LIMITED / CMD_LIMIT_PERSIST, so the flag comparison sees set bits
 //
-//   obs_golden_gen --scenarios <sim/scenarios> --out <dir>      (command line: CLI11; --help)
+//   obs_golden_gen --scenarios <sim/observer/scenarios> --out <dir>      (command line: CLI11; --help)
 //
 // The double reference (sim/observer/obs_ref) runs in closed loop with the exact plant
 // (sim::SailPlant, as the reference FSW backend hil_host/bridge/ref_backend.cpp does: initialise
@@ -71,7 +71,7 @@ constexpr double kTie = 1e-6;   // relative distance to a decision threshold tre
 
 struct ObsSetCfg {
     const char *name;        // C identifier suffix and digest name
-    const char *file;        // scenario file in sim/scenarios
+    const char *file;        // scenario file in sim/observer/scenarios
     const char *table_name;
     const obs_params_t *tab;
     uint32_t dense, stride;
@@ -473,7 +473,7 @@ int main(int argc, char **argv)
         argc, argv, "obs_golden_gen",
         "obs_golden_gen: build-time golden vectors of the observer (gv_obs_vectors.h) from its double reference.",
         [&scn_dir](CLI::App &app) {
-            app.add_option("--scenarios", scn_dir, "scenario directory (sim/scenarios)")
+            app.add_option("--scenarios", scn_dir, "scenario directory (sim/observer/scenarios)")
                 ->required()
                 ->check(CLI::ExistingDirectory);
         },
