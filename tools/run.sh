@@ -4,8 +4,8 @@
 # flight code, plant), then writes the summary and the plots.
 #
 #   tools/run.sh [SCENARIO.yaml ...]
-#       default: sim/scenarios/s0-7_nominal_mphys.yaml (sail detumbling, the observer) and
-#                sim/scenarios/rendezvous_example.yaml (terminal rendezvous, the impulse scheduler)
+#       default: sim/observer/scenarios/s0-7_nominal_mphys.yaml (sail detumbling, the observer) and
+#                sim/impulse/scenarios/rendezvous_example.yaml (terminal rendezvous, the impulse scheduler)
 #
 # Output per scenario: build/run/<scenario file name>/ with run.lcmlog (replay: lcm-logplayer),
 # summary.txt and summary.json (the run's live metrics, written by the plant process), the report
@@ -19,7 +19,7 @@ bash tools/bootstrap.sh
 
 scenarios=("$@")
 if ((${#scenarios[@]} == 0)); then
-    scenarios=(sim/scenarios/s0-7_nominal_mphys.yaml sim/scenarios/rendezvous_example.yaml)
+    scenarios=(sim/observer/scenarios/s0-7_nominal_mphys.yaml sim/impulse/scenarios/rendezvous_example.yaml)
 fi
 
 echo "=== build (host preset: the SIL executable and the LCM Python bindings)"

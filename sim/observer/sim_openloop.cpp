@@ -25,7 +25,7 @@ int main(int argc, char **argv)
                  "truth and sensor counts as CSV.\nExit 0 run completed, 2 DIVERGED, 1 usage or scenario error.",
                  "sim_openloop"};
     fsw_cli::last_value_wins(app);
-    app.add_option("scenario", scn_path, "scenario file (sim/scenarios/*.yaml)")
+    app.add_option("scenario", scn_path, "scenario file (sim/observer/scenarios/*.yaml)")
         ->required()
         ->check(CLI::ExistingFile);
     app.add_option("--cmd-radps", cmd_radps, "constant gimbal-rate command BY BZ [rad/s] (default 0 0)")

@@ -5,13 +5,13 @@
 #define TESTS_COMMON_SCENARIO_TEST_HPP
 
 #include <cstdio>
-#include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "scenario/scenario.hpp"
 #include "sim_test.hpp"
 
-inline void expect_scenario_error(const std::string &yaml, std::initializer_list<const char *> fragments)
+inline void expect_scenario_error(const std::string &yaml, const std::vector<std::string> &fragments)
 {
     try {
         (void)sim::parse_scenario(yaml, "bad.yaml");
@@ -20,9 +20,9 @@ inline void expect_scenario_error(const std::string &yaml, std::initializer_list
     } catch (const sim::ScenarioError &e) {
         const std::string msg = e.what();
         std::printf("  -> %s\n", msg.c_str());
-        for (const char *f : fragments) {
+        for (const std::string &f : fragments) {
             if (msg.find(f) == std::string::npos) {
-                std::printf("  missing '%s' in message\n", f);
+                std::printf("  missing '%s' in message\n", f.c_str());
                 EXPECT_TRUE(false);
             }
         }

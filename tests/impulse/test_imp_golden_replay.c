@@ -1,7 +1,7 @@
 /*
  * Impulse solver golden replay (spec 50-impulse §6 G3 and a G4 subset; spec 00 §6.4): host and
  * target. The vectors are generated at build time from the double reference
- * (tests/golden/gen/golden_gen.cpp, sim/impulse/imp_ref_solver) and never committed: the problems
+ * (tests/impulse/gen/imp_golden_gen.cpp, sim/impulse/imp_ref_solver) and never committed: the problems
  * as the fixed-point solver sees them (q28 state and target, q29 tau_f, q30 alpha of
  * IMP_TBL_DEFAULT; the reference solved the same dequantised problem with the table's guards),
  * and the reference results. The fixed-point solver runs each problem; its outputs go into a
@@ -39,7 +39,7 @@
 #include "imp.h"
 #include "imp_tables.h"
 #include "ut.h"
-#include "gv.h"
+#include "gv_imp.h"
 #include "gv_print.h"
 #include "gv_imp_vectors.h"
 

@@ -15,6 +15,15 @@
 #define TC_ABORT FSW_TC_ID(FSW_MISSION_RENDEZVOUS, IMP_CMD_ABORT)
 #define TC_CLEAR FSW_TC_ID(FSW_MISSION_RENDEZVOUS, IMP_CMD_CLEAR_FAULTS)
 
+/* A mode command for a mode that is not this mission's: DETUMBLE's when the build holds that
+   mission too (a mode the executive flies, the sharpest case), else the next number, which no
+   configured mission flies (FSW_MISSIONS=RENDEZVOUS builds this test as well). */
+#if defined(FSW_MODE_DETUMBLE)
+#define OTHER_MODE FSW_MODE_DETUMBLE
+#else
+#define OTHER_MODE (FSW_MODE_RENDEZVOUS + 1u)
+#endif
+
 /* Large objects live in static storage: the target runner has a small stack. Test-only state. */
 static fsw_t g_a;
 static fsw_t g_b;
@@ -154,7 +163,7 @@ UT_TEST(rendezvous_telecommands_only_in_the_mission_mode)
     UT_TRUE((g_oa.health & FSW_H_TC_REJ) != 0u);
     UT_UEQ(g_oa.tlm.m.rendezvous.mode, IMP_MODE_IDLE);
     in = nav_frame(2);
-    in.mode_cmd = FSW_MODE_DETUMBLE;                   /* not this mission's mode */
+    in.mode_cmd = OTHER_MODE;                          /* not this mission's mode */
     fsw_step(&g_a, &in, &g_oa);
     UT_UEQ(g_oa.mode, FSW_MODE_STANDBY);
     UT_UEQ(g_oa.tlm.n_mode_rej, 1u);

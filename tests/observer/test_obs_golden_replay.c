@@ -1,7 +1,7 @@
 /*
  * Observer golden replay (spec 10-observer §5 single-step vectors, spec 00 §6.4): host and
  * target. The vectors are generated at build time from the double reference in closed loop
- * with the exact plant (tests/golden/gen/golden_gen.cpp) and never committed: the three runs on
+ * with the exact plant (tests/observer/gen/obs_golden_gen.cpp) and never committed: the three runs on
  * which spec 10 S0-8 requires the golden bounds, S0-5 nominal and S0-5 gyro noise seed 0 on
  * obs_50hz_paper, S0-7 nominal on obs_50hz_phys, and the S0-9 authority case (S0-5 nominal with
  * the command vector-limited at 1.2 deg/s), whose CMD_LIMITED / CMD_LIMIT_PERSIST vectors give
@@ -65,7 +65,7 @@
 #include "obs.h"
 #include "obs_tables.h"
 #include "ut.h"
-#include "gv.h"
+#include "gv_obs.h"
 #include "gv_print.h"
 #include "gv_obs_vectors.h"
 

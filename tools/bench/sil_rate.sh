@@ -20,7 +20,7 @@ mkdir -p bench
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # S0-5 nominal (M-paper, 50 Hz) stretched to 200 s = 10^4 steps.
-sed 's/^duration_s:.*/duration_s: 200/' sim/scenarios/s0-5_nominal_mpaper.yaml > "$tmp/s.yaml"
+sed 's/^duration_s:.*/duration_s: 200/' sim/observer/scenarios/s0-5_nominal_mpaper.yaml > "$tmp/s.yaml"
 port=$((7400 + RANDOM % 200))
 
 stats() { sort -n | awk '{a[NR]=$1} END {printf "%.0f %.0f\n", a[int((NR+1)/2)], a[1]}'; }

@@ -1,6 +1,6 @@
 // fsw_cli.hpp: what the host command-line tools add to CLI11 (Debian 12: libcli11-dev 2.1.2).
 // Header-only, host only; used by hil_host/sil/sil, hil_host/tools/lcm_pingpong,
-// sim/observer/sim_openloop, tests/golden/gen/golden_gen and tools/impulse/imp_mc (each links
+// sim/observer/sim_openloop, tests/<module>/gen/<prefix>_golden_gen and tools/impulse/imp_mc (each links
 // CLI11::CLI11 and adds this directory to its include path).
 //
 // Options, help, required options, choices (CLI::IsMember), ranges (CLI::Range) and paths

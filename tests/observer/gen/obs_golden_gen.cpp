@@ -1,18 +1,17 @@
-// golden_gen — build-time golden vectors from the double references (spec 00 §6.4,
-// 10-observer §5, 50-impulse §6). Run by a custom command of host builds only; writes C headers
-// of const integer arrays into the build tree (never committed):
+// obs_golden_gen — build-time golden vectors of the observer from its double reference (spec 00
+// §6.4, 10-observer §5). Run by a custom command of host builds only (golden_vectors() of
+// tests/golden/CMakeLists.txt); writes a C header of const integer arrays into the build tree
+// (never committed):
 //
 //   gv_obs_vectors.h   observer single-step sets of the three runs spec 10 S0-8 names: S0-5
 //                      nominal and S0-5 gyro noise seed 0 (M-paper, OBS_TBL_50HZ_PAPER), S0-7
 //                      nominal (M-phys, OBS_TBL_50HZ_PHYS); and the S0-9 authority case (S0-5
 //                      nominal with the command vector-limited at 1.2 deg/s), whose vectors
 //                      carry CMD_LIMITED / CMD_LIMIT_PERSIST, so the flag comparison sees set bits
-//   gv_imp_vectors.h   impulse sets: G3 (the paper's example, iterates 0-5 and the plan) and a
-//                      G4 subset (Monte Carlo draws of tools/impulse/imp_mc.cpp, seed 1)
 //
-//   golden_gen --scenarios <sim/scenarios> --out <dir>      (command line: CLI11; --help)
+//   obs_golden_gen --scenarios <sim/observer/scenarios> --out <dir>      (command line: CLI11; --help)
 //
-// Observer. The double reference (sim/reference/obs_ref) runs in closed loop with the exact plant
+// The double reference (sim/observer/obs_ref) runs in closed loop with the exact plant
 // (sim::SailPlant, as the reference FSW backend hil_host/bridge/ref_backend.cpp does: initialise
 // from the first complete sample, then one reference step per sample, the plant holding the
 // command counts). At each selected step n the reference state is quantised to the flight
@@ -29,134 +28,50 @@
 // the limit cycle. Single-step vectors are independent of each other, so a strided set covers
 // the trajectory's whole operating range at a fraction of the image size.
 //
-// Impulse. Problems are built as tests/impulse/test_imp_golden_host.cpp and imp_mc build them
-// (state quantised to q28, tau_f to q29, alpha and units from IMP_TBL_DEFAULT; the reference
-// solves the dequantised problem with the table's guards).
-#include "fsw_cli.hpp"
-#include "impulse/imp_ref_solver.hpp"
+// The emitter, the record CRC and the command line are tests/golden/gen/gv_emit.hpp's.
+#include "gv_emit.hpp"
 #include "observer/obs_ref.hpp"
 #include "observer/sail_plant.hpp"
 #include "scenario/scenario.hpp"
-#include "sensors/rng.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 extern "C" {
-#include "gv.h"
-#include "gv_digest.h"
-#include "imp_tables.h"
+#include "gv_obs.h"
 #include "obs_tables.h"
 }
 
 static_assert(sizeof(gv_obs_t) == 98u * 4u, "gv_obs_t: the emitter writes 98 words");
-static_assert(sizeof(gv_imp_case_t) == 34u * 4u, "gv_imp_case_t: the emitter writes 34 words");
-static_assert(sizeof(gv_imp_iter_t) == 12u * 4u, "gv_imp_iter_t: the emitter writes 12 words");
 
 namespace {
 
-constexpr double Q26 = 67108864.0;
-constexpr double Q28 = 268435456.0;
-constexpr double Q29 = 536870912.0;
-constexpr double Q30 = 1073741824.0;
+using gv::Emit;
+using gv::header_top;
+using gv::hex32;
+using gv::ibound;
+using gv::inf_norm;
+using gv::qnt;
+using gv::Q28;
+using gv::Q29;
+using gv::Q30;
+using gv::set_crc;
+using gv::write_file;
+
+const gv::Origin kOrigin{"obs_golden_gen", "tests/observer/gen/obs_golden_gen.cpp", "sim/observer", "gv_obs.h"};
+
 constexpr double kTie = 1e-6;   // relative distance to a decision threshold treated as a tie
-
-int32_t qnt(double v, int q)
-{
-    const double s = std::round(std::ldexp(v, q));
-    if (!(s >= -2147483648.0 && s <= 2147483647.0)) {
-        throw std::runtime_error("golden_gen: value outside int32 at q" + std::to_string(q));
-    }
-    return static_cast<int32_t>(s);
-}
-
-// An integer bound from a real one: the errors are integers, so err <= b iff err <= floor(b).
-int32_t ibound(double b) { return static_cast<int32_t>(std::floor(b)); }
-
-int32_t ceil_q8(double v) { return static_cast<int32_t>(std::ceil(v * 256.0)); }
-
-// ------------------------------------------------------------------ C emitter
-
-class Emit {
-public:
-    void i(int32_t v)
-    {
-        sep();
-        if (v == INT32_MIN) {
-            s_ << "(-2147483647 - 1)";
-        } else {
-            s_ << v;
-        }
-    }
-    void u(uint32_t v)
-    {
-        sep();
-        s_ << v << "u";
-    }
-    void in(const int32_t *v, size_t n)
-    {
-        open();
-        for (size_t k = 0; k < n; ++k) { i(v[k]); }
-        close();
-    }
-    void un(const uint32_t *v, size_t n)
-    {
-        open();
-        for (size_t k = 0; k < n; ++k) { u(v[k]); }
-        close();
-    }
-    void open()
-    {
-        sep();
-        s_ << "{";
-        first_ = true;
-    }
-    void close()
-    {
-        s_ << "}";
-        first_ = false;
-    }
-    void nl() { s_ << "\n    "; }
-    std::string str() const { return s_.str(); }
-
-private:
-    void sep()
-    {
-        if (!first_) { s_ << ", "; }
-        first_ = false;
-    }
-    std::ostringstream s_;
-    bool first_ = true;
-};
-
-void write_file(const std::string &path, const std::string &text)
-{
-    std::ofstream f(path, std::ios::binary | std::ios::trunc);
-    if (!f) { throw std::runtime_error("golden_gen: cannot write " + path); }
-    f << text;
-    if (!f) { throw std::runtime_error("golden_gen: write failed: " + path); }
-}
-
-std::string hex32(uint32_t v)
-{
-    char b[16];
-    std::snprintf(b, sizeof b, "0x%08xu", v);
-    return b;
-}
-
-// ------------------------------------------------------------------ observer
 
 struct ObsSetCfg {
     const char *name;        // C identifier suffix and digest name
-    const char *file;        // scenario file in sim/scenarios
+    const char *file;        // scenario file in sim/observer/scenarios
     const char *table_name;
     const obs_params_t *tab;
     uint32_t dense, stride;
@@ -208,8 +123,6 @@ QState quantise(const ref::ObsState &st, const std::array<int32_t, 2> &u_prev_cn
     }
     return q;
 }
-
-double inf_norm(const Eigen::MatrixXd &m) { return m.cwiseAbs().rowwise().sum().maxCoeff(); }
 
 // obs_ref does not expose the intermediates of its step, so the generator repeats the
 // reference's measurement update (sequential scalar channels, exactly as obs_ref.cpp) from the
@@ -288,7 +201,7 @@ void expected_flags(const obs_params_t &tab, const ref::ObsTable &rt, const RefU
     const Eigen::Vector2d u = -rt.d * ru.z.head<6>();
     decide(u.cwiseAbs().maxCoeff(), rt.bdot_max, du, true, OBS_H_CMD_LIMITED);
     if (ro.limited != ((health & OBS_H_CMD_LIMITED) != 0u) && (dc & OBS_H_CMD_LIMITED) == 0u) {
-        throw std::runtime_error("golden_gen: command limit decision differs from obs_ref");
+        throw std::runtime_error("command limit decision differs from obs_ref");
     }
     if (ro.limited && limited_run + 1u >= tab.n_sat) { health |= OBS_H_CMD_LIMIT_PERSIST; }
     const Eigen::Matrix<double, 7, 7> pp = ro.fs * p * ro.fs.transpose() + rt.q;
@@ -386,7 +299,7 @@ std::vector<gv_obs_t> obs_set(const std::string &scn_dir, const ObsSetCfg &cfg, 
     const sim::Scenario scn = sim::load_scenario(scn_dir + "/" + cfg.file);
     const obs_params_t tab = set_table(cfg);
     const ref::ObsTable rt = ref::dequantise(tab);
-    if (scn.period_us != tab.period_us) { throw std::runtime_error("golden_gen: scenario period != table period"); }
+    if (scn.period_us != tab.period_us) { throw std::runtime_error("scenario period != table period"); }
     sim::SailPlant plant(scn);
     const uint64_t n = scn.n_steps();
     std::vector<gv_obs_t> out;
@@ -399,7 +312,7 @@ std::vector<gv_obs_t> obs_set(const std::string &scn_dir, const ObsSetCfg &cfg, 
         const std::array<int32_t, 2> y{{f.cnt[0], f.cnt[1]}};
         const bool valid = f.status[0] == 0u && f.status[1] == 0u;
         std::array<int32_t, 2> cmd{{0, 0}};
-        if (!valid) { throw std::runtime_error("golden_gen: invalid gyro sample in a nominal scenario"); }
+        if (!valid) { throw std::runtime_error("invalid gyro sample in a nominal scenario"); }
         const bool first = !init;
         if (first) {
             st = ref::initial_state(tab, y);
@@ -444,7 +357,7 @@ std::vector<gv_obs_t> obs_set(const std::string &scn_dir, const ObsSetCfg &cfg, 
             }
             const RefUpdate ru = ref_update(rt, rs, y);
             if ((ru.gain - ro.gain).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + ro.gain.cwiseAbs().maxCoeff())) {
-                throw std::runtime_error("golden_gen: repeated update disagrees with obs_ref's gains");
+                throw std::runtime_error("repeated update disagrees with obs_ref's gains");
             }
             step_bounds(tab, rt, rs, ru, ro, v);
             expected_flags(tab, rt, ru, ro, limited_run, v, v.health, v.health_dc);
@@ -476,7 +389,7 @@ std::vector<gv_obs_t> obs_set(const std::string &scn_dir, const ObsSetCfg &cfg, 
         ac.cnt[1] = cmd[1];
         plant.apply(ac);
         if (plant.propagate() != sim::RunState::Running && k + 1u < n) {
-            throw std::runtime_error(std::string("golden_gen: plant run ended early in ") + cfg.file);
+            throw std::runtime_error(std::string("plant run ended early in ") + cfg.file);
         }
     }
     return out;
@@ -510,124 +423,6 @@ void emit_obs_record(Emit &e, const gv_obs_t &v)
     e.close();
 }
 
-// ------------------------------------------------------------------ impulse
-
-struct Problem {
-    gv_imp_case_t v{};
-    ref::ImpCase c;   // the dequantised case the fixed-point code sees
-};
-
-// State in SI -> q28 problem (units and alpha from the table) and its dequantised case.
-Problem make_problem(const imp_params_t &p, const ref::Vec6 &x0, double tauf)
-{
-    Problem f;
-    f.c.w = p.omega_nradps * 1e-9;
-    f.c.a_nom = p.a_nom_umps2 * 1e-6;
-    f.v.tauf_q29 = qnt(tauf, 29);
-    f.c.T = f.v.tauf_q29 / Q29 / f.c.w;
-    for (int i = 0; i < 6; ++i) {
-        const auto si = static_cast<size_t>(i);
-        const double unit = (i % 2 == 0) ? f.c.L() : f.c.V();
-        f.v.x0_q28[i] = qnt(x0(i) / unit, 28);
-        f.v.xt_q28[i] = 0;
-        f.c.x0(i) = f.v.x0_q28[i] / Q28 * unit;
-        f.c.xt(i) = 0.0;
-        f.v.alpha_q30[i] = p.alpha_q30[i];
-        f.c.alpha[si] = p.alpha_q30[i] / Q30;
-    }
-    return f;
-}
-
-// The reference plan of a problem, into the record.
-void solve_ref(const imp_params_t &p, Problem &f, uint32_t &n_valid)
-{
-    const ref::ImpGuards g = ref::guards_from_table(p);
-    const ref::ImpPlan pl = ref::solve(f.c, g);
-    gv_imp_case_t &v = f.v;
-    v.outcome = pl.outcome;
-    v.pattern = pl.pattern;
-    for (size_t s = 0; s < 2; ++s) {
-        v.how[s] = pl.how[s];
-        v.iters[s] = static_cast<uint32_t>(pl.iters[s]);
-        v.dv_q28[s] = qnt(pl.dv[s], 28);
-    }
-    for (size_t r = 0; r < 3; ++r) {
-        v.t1_q29[r] = qnt(pl.t1[r], 29);
-        v.t2_q29[r] = qnt(pl.t2[r], 29);
-    }
-    v.jinv_q8 = 0;
-    if (pl.outcome == IMP_SOL_VALID) {
-        ++n_valid;
-        const ref::ImpNd nd = ref::nondim(f.c);
-        const std::array<double, 2> a1{{pl.t1[0], pl.t1[1]}}, a2{{pl.t2[0], pl.t2[1]}};
-        const std::array<double, 2> b1{{pl.t1[2], 0}}, b2{{pl.t2[2], 0}};
-        const double nxy = inf_norm(ref::jacobian(nd, 0, pl.pattern & 0xFu, a1, a2).inverse());
-        const double nz = inf_norm(ref::jacobian(nd, 1, (pl.pattern >> 4) & 3u, b1, b2).inverse());
-        v.jinv_q8 = ceil_q8(std::max(nxy, nz));
-    }
-}
-
-void emit_imp_case(Emit &e, const gv_imp_case_t &v)
-{
-    e.nl();
-    e.open();
-    e.i(v.tauf_q29);
-    e.in(v.x0_q28, 6);
-    e.in(v.xt_q28, 6);
-    e.in(v.alpha_q30, 6);
-    e.u(v.outcome);
-    e.u(v.pattern);
-    e.un(v.how, 2);
-    e.un(v.iters, 2);
-    e.in(v.t1_q29, 3);
-    e.in(v.t2_q29, 3);
-    e.in(v.dv_q28, 2);
-    e.i(v.jinv_q8);
-    e.close();
-}
-
-void emit_imp_iter(Emit &e, const gv_imp_iter_t &v)
-{
-    e.nl();
-    e.open();
-    e.u(v.sub);
-    e.u(v.pat);
-    e.u(v.k);
-    e.in(v.t1_q29, 2);
-    e.in(v.t2_q29, 2);
-    e.in(v.f_q28, 4);
-    e.i(v.jn_q8);
-    e.close();
-}
-
-uint32_t words_crc(const void *rec, size_t bytes, uint32_t crc_in)
-{
-    gv_dg_t d;
-    d.crc = crc_in;
-    d.n = 0u;
-    gv_dg_words(&d, rec, bytes);
-    return d.crc;
-}
-
-template <typename T>
-uint32_t set_crc(const std::vector<T> &v)
-{
-    uint32_t c = 0u;
-    for (const T &r : v) { c = words_crc(&r, sizeof r, c); }
-    return c;
-}
-
-std::string header_top(const char *guard, const char *what)
-{
-    std::ostringstream h;
-    h << "/*\n * " << what << "\n"
-      << " * GENERATED at build time by golden_gen (tests/golden/gen/golden_gen.cpp) from the double\n"
-      << " * references in sim/reference: do not edit, never commit. Host builds regenerate it;\n"
-      << " * Cortex-M builds import it from FSW_HOST_BUILD_DIR/golden/gen (tests/golden/README.md).\n"
-      << " */\n#ifndef " << guard << "\n#define " << guard << "\n\n#include \"gv.h\"\n\n";
-    return h.str();
-}
-
 void gen_obs(const std::string &scn_dir, const std::string &out_dir)
 {
     const std::array<ObsSetCfg, 4> sets{{
@@ -636,7 +431,7 @@ void gen_obs(const std::string &scn_dir, const std::string &out_dir)
         {"PHYS", "s0-7_nominal_mphys.yaml", "obs_50hz_phys", &OBS_TBL_50HZ_PHYS, 200u, 150u, 0.0},
         {"LIMIT", "s0-5_nominal_mpaper.yaml", "obs_50hz_paper, bdot_max 1.2 deg/s", &OBS_TBL_50HZ_PAPER, 200u, 30u, 1.2},
     }};
-    std::string text = header_top("GV_OBS_VECTORS_H", "gv_obs_vectors.h - observer single-step golden vectors "
+    std::string text = header_top(kOrigin, "GV_OBS_VECTORS_H", "gv_obs_vectors.h - observer single-step golden vectors "
                                                       "(spec 10-observer §5): S0-5 nominal and noise seed 0, S0-7 nominal.");
     for (const ObsSetCfg &cfg : sets) {
         ObsSetStats s;
@@ -660,7 +455,7 @@ void gen_obs(const std::string &scn_dir, const std::string &out_dir)
         for (const gv_obs_t &r : v) { emit_obs_record(e, r); }
         h << e.str() << "\n};\n\n";
         text += h.str();
-        std::printf("golden_gen: observer %s (%s): %u vectors, %zu bytes; bounds x %g-%g (%g), kappa %g, P %g-%g (%g); "
+        std::printf("obs_golden_gen: observer %s (%s): %u vectors, %zu bytes; bounds x %g-%g (%g), kappa %g, P %g-%g (%g); "
                     "flagged %u (0x%08x); don't-care %u (0x%08x)\n",
                     cfg.name, cfg.file, s.n, v.size() * sizeof(gv_obs_t), s.bx0_min, s.bx0_max, s.bx1_max, s.bk_max,
                     s.bp0_min, s.bp0_max, s.bp1_max, s.flagged, s.flags, s.dc, s.dc_bits);
@@ -669,129 +464,18 @@ void gen_obs(const std::string &scn_dir, const std::string &out_dir)
     write_file(out_dir + "/gv_obs_vectors.h", text);
 }
 
-void gen_imp(const std::string &out_dir)
-{
-    const imp_params_t &p = IMP_TBL_DEFAULT;
-    const ref::ImpGuards g = ref::guards_from_table(p);
-    const double w = p.omega_nradps * 1e-9;
-    uint32_t n_valid = 0;
-    // G3: the paper's example (spec 50 §3.4): X0 = (5 km, -1 m/s, 4 km, -1 m/s, 4 km, -1 m/s), T = 1055 s.
-    ref::Vec6 ex;
-    ex << 5000, -1, 4000, -1, 4000, -1;
-    Problem g3 = make_problem(p, ex, w * 1055.0);
-    solve_ref(p, g3, n_valid);
-    std::vector<gv_imp_iter_t> its;
-    {
-        const ref::ImpNd nd = ref::nondim(g3.c);
-        const std::array<std::pair<int, unsigned>, 2> subs{{{0, 0xCu}, {1, 0x1u}}};   // the rule's polarities
-        for (const auto &sp : subs) {
-            const ref::ImpAttempt a = ref::attempt(nd, g, sp.first, sp.second, {{0, 0}}, {{nd.tauf, nd.tauf}});
-            for (size_t k = 0; k < a.hist.size() && k <= 5u; ++k) {
-                const ref::ImpIter &h = a.hist[k];
-                gv_imp_iter_t r{};
-                r.sub = static_cast<uint32_t>(sp.first);
-                r.pat = sp.second;
-                r.k = static_cast<uint32_t>(k);
-                for (size_t m = 0; m < 2; ++m) {
-                    r.t1_q29[m] = qnt(h.t1[m], 29);
-                    r.t2_q29[m] = qnt(h.t2[m], 29);
-                }
-                for (Eigen::Index m = 0; m < h.f.size(); ++m) { r.f_q28[m] = qnt(h.f(m), 28); }
-                r.jn_q8 = ceil_q8(inf_norm(ref::jacobian(nd, sp.first, sp.second, h.t1, h.t2)));
-                its.push_back(r);
-            }
-        }
-    }
-    // G4 subset: imp_mc's draws (sim::Rng(seed, box_id << 32 | i), X0 = (2u - 1) half-width), seed 1:
-    // the first 64 of the nominal box (+-5 km / +-1 m/s, id 1) and 32 of the wide box (+-20 km /
-    // +-5 m/s, id 2, where most plans are INFEASIBLE or NO_SOLUTION: outcome equality).
-    struct Box {
-        uint64_t id;
-        double rp, rv;
-        uint32_t n;
-    };
-    const std::array<Box, 2> boxes{{{1u, 5000.0, 1.0, 64u}, {2u, 20000.0, 5.0, 32u}}};
-    std::vector<gv_imp_case_t> g4;
-    std::array<uint32_t, 2> valid_box{{0, 0}};
-    for (size_t b = 0; b < boxes.size(); ++b) {
-        for (uint32_t i = 0; i < boxes[b].n; ++i) {
-            sim::Rng rng(1u, (boxes[b].id << 32) | i);
-            ref::Vec6 x0;
-            for (int k = 0; k < 6; ++k) {
-                const double u = rng.uniform();
-                x0(k) = (2.0 * u - 1.0) * ((k % 2 == 0) ? boxes[b].rp : boxes[b].rv);
-            }
-            Problem pr = make_problem(p, x0, w * 1055.0);
-            solve_ref(p, pr, valid_box[b]);
-            g4.push_back(pr.v);
-        }
-    }
-    // Tolerances in LSB of q29 at the table's orbit rate: spec 50 G3 (every iterate 1 ms, final
-    // 0.25 ms) and G4 (0.25 ms); + 0.5 LSB for the rounded reference time (the error is an integer).
-    const int32_t tol_1ms = ibound(1.0e-3 * w * Q29 + 0.5);
-    const int32_t tol_025ms = ibound(0.25e-3 * w * Q29 + 0.5);
-    std::string text = header_top("GV_IMP_VECTORS_H", "gv_imp_vectors.h - impulse solver golden vectors "
-                                                      "(spec 50-impulse §6): G3 and a G4 subset.");
-    std::ostringstream h;
-    h << "#define GV_IMP_TABLE_FP " << hex32(gv_imp_table_fp(&p)) << "   /* IMP_TBL_DEFAULT */\n";
-    h << "#define GV_IMP_TOL_1MS_Q29 " << tol_1ms << "     /* 1 ms = " << 1.0e-3 * w * Q29 << " LSB q29, + 0.5 */\n";
-    h << "#define GV_IMP_TOL_025MS_Q29 " << tol_025ms << "   /* 0.25 ms = " << 0.25e-3 * w * Q29
-      << " LSB q29, + 0.5 */\n\n";
-    h << "/* G3: the paper's example, its reference plan (" << (g3.v.outcome == IMP_SOL_VALID ? "VALID" : "not valid")
-      << ", pattern " << g3.v.pattern << ") and pure-Newton iterates from (0, tau_f). */\n";
-    h << "static const gv_imp_case_t GV_IMP_G3_CASE = ";
-    {
-        Emit e;
-        emit_imp_case(e, g3.v);
-        h << e.str() << ";\n";
-    }
-    h << "#define GV_IMP_G3_N " << its.size() << "u\n";
-    h << "#define GV_IMP_G3_CRC " << hex32(set_crc(its)) << "\n";
-    h << "static const gv_imp_iter_t GV_IMP_G3[" << its.size() << "] = {";
-    {
-        Emit e;
-        for (const gv_imp_iter_t &r : its) { emit_imp_iter(e, r); }
-        h << e.str() << "\n};\n\n";
-    }
-    h << "/* G4 subset, imp_mc seed 1: nominal box 0-" << boxes[0].n - 1u << " (" << valid_box[0]
-      << " valid), wide box 0-" << boxes[1].n - 1u << " (" << valid_box[1] << " valid). */\n";
-    h << "#define GV_IMP_G4_N " << g4.size() << "u\n";
-    h << "#define GV_IMP_G4_CRC " << hex32(set_crc(g4)) << "\n";
-    h << "static const gv_imp_case_t GV_IMP_G4[" << g4.size() << "] = {";
-    {
-        Emit e;
-        for (const gv_imp_case_t &r : g4) { emit_imp_case(e, r); }
-        h << e.str() << "\n};\n\n";
-    }
-    text += h.str() + "#endif\n";
-    write_file(out_dir + "/gv_imp_vectors.h", text);
-    std::printf("golden_gen: impulse G3 %zu iterates + plan; G4 %zu cases (%u + %u valid)\n", its.size(), g4.size(),
-                valid_box[0], valid_box[1]);
-}
-
 }  // namespace
 
 int main(int argc, char **argv)
 {
-    std::string scn_dir, out_dir;
-    CLI::App app{"golden_gen: build-time golden vectors (gv_obs_vectors.h, gv_imp_vectors.h) from the double "
-                 "references.\nExit 0 written, 1 generation error, 2 bad usage.",
-                 "golden_gen"};
-    fsw_cli::last_value_wins(app);
-    app.add_option("--scenarios", scn_dir, "scenario directory (sim/scenarios)")
-        ->required()
-        ->check(CLI::ExistingDirectory);
-    app.add_option("--out", out_dir, "existing directory for the headers")->required()->check(CLI::ExistingDirectory);
-    const int rc = fsw_cli::parse(app, argc, argv, 2);
-    if (rc >= 0) {
-        return rc;
-    }
-    try {
-        gen_obs(scn_dir, out_dir);
-        gen_imp(out_dir);
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
-    return 0;
+    std::string scn_dir;
+    return gv::run(
+        argc, argv, "obs_golden_gen",
+        "obs_golden_gen: build-time golden vectors of the observer (gv_obs_vectors.h) from its double reference.",
+        [&scn_dir](CLI::App &app) {
+            app.add_option("--scenarios", scn_dir, "scenario directory (sim/observer/scenarios)")
+                ->required()
+                ->check(CLI::ExistingDirectory);
+        },
+        [&scn_dir](const std::string &out_dir) { gen_obs(scn_dir, out_dir); });
 }
