@@ -117,7 +117,7 @@ typedef struct {
  * upload, plus the mission's module check. FSW_ERR_ARG on a bad cfg or NULL (f untouched); a boot
  * image that fails its checks returns the loader's code or FSW_ERR_INVARIANT and leaves the
  * executive to go SAFE at its first step with FSW_H_NO_TABLE. Images come from the mission's
- * encoder (e.g. obs_table_encode) or from the ground tools. boot == NULL with boot_len == 0 boots
+ * encoder (<prefix>_table_encode) or from the ground tools. boot == NULL with boot_len == 0 boots
  * without a table (a generic image, the table is loaded on the ground or in orbit): FSW_OK,
  * nothing counted as refused, FSW_H_NO_TABLE until an upload commits; one committed at the
  * boundary of the first step lets the executive enter its boot mode directly.
