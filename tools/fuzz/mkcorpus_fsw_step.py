@@ -53,6 +53,24 @@ def start(lead, dur, target=(0, 0, 0, 0, 0, 0)):
     return rec(TC, 1, bytes([TC_START, lead, dur]) + i16s(*target))
 
 
+# The harness sends a START with t_f - t0 = 100 + 16 dur steps; the scheduler takes it only for
+# tau_f = w (t_f - t0) h in [0.2, 2.0] rad (w = 1.131e-3 rad/s): dur 5..104 on the 1 s table,
+# dur 105..255 on the 0.1 s tables (at most 418 s). From the paper's state (5, 4, 4 km) 418 s is
+# infeasible at a_nom = 0.04 m/s^2, so the 0.1 s seeds first put the nav state at 300, 200, 200 m
+# (at rest), where the plan succeeds and the burns start.
+DUR = {0: 150, 1: 100, 2: 150}
+
+
+def near(table):
+    """A raw nav record with a state the 0.1 s tables can reach; nothing on the 1 s table."""
+    return b"" if table == 1 else rec(RAW, 1, i32s(300000, 200000, 200000, 0, 0, 0, 0))
+
+
+def rdv(table, steps=5):
+    """RENDEZVOUS boot on a table, steps of the boot nav state (near() on 0.1 s), then START."""
+    return cfg(True, table) + near(table) + run(steps - 1 if near(table) else steps) + start(60, DUR[table])
+
+
 def seeds():
     s = {}
     for t, name in enumerate(("phys", "paper", "5hz")):
@@ -74,19 +92,19 @@ def seeds():
                           + rec(MODE, 1, bytes([MODE_SAFE])) + run(20) + rec(MODE, 1, bytes([MODE_DETUMBLE])) + run(100)
                           + rec(TC, 1, bytes([TC_START, 0, 0]) + i16s(0, 0, 0, 0, 0, 0)) + run(10))
     for t, name in enumerate(("0p1s", "1s", "sub1ms")):
-        s[f"rdv_{name}_start"] = cfg(True, t) + run(5) + start(60, 100) + run(900)
-    s["rdv_1s_long"] = cfg(True, 1) + run(5) + start(60, 100) + run(980)
-    s["rdv_nav_dropout"] = (cfg(True, 0) + run(5) + start(60, 100) + run(300)
+        s[f"rdv_{name}_start"] = rdv(t) + run(900)
+    s["rdv_1s_long"] = rdv(1) + run(980)
+    s["rdv_nav_dropout"] = (rdv(0) + run(300)
                             + rec(STATUS, 200, bytes([1] * 7)) + run(300))
-    s["rdv_abort_clear"] = (cfg(True, 0) + run(5) + start(60, 100) + run(200) + rec(TC, 1, bytes([TC_ABORT]))
-                            + run(20) + rec(TC, 1, bytes([TC_CLEAR])) + run(20) + start(60, 100, (100, -100, 50, 0, 0, 0))
+    s["rdv_abort_clear"] = (rdv(0) + run(200) + rec(TC, 1, bytes([TC_ABORT]))
+                            + run(20) + rec(TC, 1, bytes([TC_CLEAR])) + run(20) + start(60, DUR[0], (100, -100, 50, 0, 0, 0))
                             + run(400))
     s["rdv_bad_starts"] = (cfg(True, 0) + run(5) + start(0, 0) + run(5) + start(60, 255, (32767, 32767, 32767, 0, 0, 0))
                            + run(100) + rec(TC, 1, bytes([5])) + run(5) + rec(MODE, 1, bytes([MODE_DETUMBLE])) + run(5))
-    s["rdv_nav_junk"] = (cfg(True, 0) + run(5) + start(60, 100) + run(100)
+    s["rdv_nav_junk"] = (rdv(0) + run(100)
                          + rec(RAW, 3, i32s(2**31 - 1, -2**31, 0, 25000001, -25000001, 0, 0)) + run(50)
                          + rec(DELTA, 20, i16s(30000, 0, 0, 0, 0, 0, 0)) + run(200))
-    s["rdv_seq"] = (cfg(True, 0) + run(5) + start(60, 100) + run(100) + rec(SEQ_BACK, 1, bytes([50])) + run(20)
+    s["rdv_seq"] = (rdv(0) + run(100) + rec(SEQ_BACK, 1, bytes([50])) + run(20)
                     + rec(SEQ_JUMP, 1, struct.pack("<H", 300)) + run(200))
     return s
 
