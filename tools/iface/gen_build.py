@@ -5,8 +5,13 @@
                                 unions, one switch per adapter entry point (no function pointers)
     iface_gen.hpp / .cpp        the host's tables: telemetry layouts, health-bit, enum, mode and
                                 telecommand names, table field names (C++, no parsing of C)
-    missions_host_gen.cpp       the host factories: each mission's scenario section, plant,
-                                reference backend and metrics (hil_host/missions/<module>)
+    sim_missions_gen.cpp        the scenario registry: each mission's section (sim/<module>)
+    host_missions_gen.cpp       the host registry: each mission's host class (boot image,
+                                reference backend, metrics; hil_host/missions/<module>)
+    missions.cmake              the configured names, modules and prefixes (--cmake)
+
+`python -m tools.iface pattern` writes the telemetry layout test's field filler for tests/iface,
+into that test's own build folder: every C file here is flight code to the lints (--gen).
 
 Nothing here is committed: the set of missions is a build configuration (FSW_MISSIONS).
 """
@@ -316,4 +321,9 @@ def main(names, out, host=True, with_cmake=False):
         if not os.path.exists(path) or open(path).read() != text:
             with open(path, "w") as fh:
                 fh.write(text)
+    # The layout test's filler is written by tests/iface into its own build folder; an older build
+    # tree had it here, where the lints would take it for flight code.
+    for stale in ("tlm_pattern_gen.c", os.path.join("tests", "tlm_pattern_gen.c")):
+        if os.path.exists(os.path.join(out, stale)):
+            os.remove(os.path.join(out, stale))
     return 0
