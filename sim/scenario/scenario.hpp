@@ -135,7 +135,7 @@ class Plant;
 class MissionSection {
 public:
     virtual ~MissionSection() = default;
-    virtual const char *mission() const = 0;                  // DETUMBLE
+    virtual const char *mission() const = 0;                  // its name in missions.json
     // Keys the mission adds to the root, to fsw: and to faults:.
     virtual std::vector<std::string> root_keys() const = 0;
     virtual std::vector<std::string> fsw_keys() const { return {}; }
