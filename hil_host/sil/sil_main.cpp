@@ -8,11 +8,15 @@
 //   sil bridge --scenario F --url udpm://... [--idle-timeout-ms N]
 //   sil ping   --url udpm://...    one runner heartbeat on GNC_CTL (logger start-up handshake)
 //   sil logger --url udpm://... --log F [--idle-timeout-ms N]   lossless event logger of a udpm run
+//   sil check  --scenario F    the scenario as a run would read it, its table (boot table, or the
+//              table file through the flight upload path), without flying: one JSON line, or the
+//              error and exit 1 (the campaign runner checks every dispersion's extremes with it)
 //              the two ends as separate processes (udpm); log with lcm-logger.
 // Exit: 0 run completed (also a DIVERGED end: that is a result, in the summary), 1 error,
 // 2 usage (CLI11 names the bad option), 77 lcm_create failed (no multicast on loopback).
 #include "fsw_cli.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -192,6 +196,9 @@ int main(int argc, char **argv)
     br->add_option("--idle-timeout-ms", idle_ms, "end after this long without a message")
         ->check(fsw_cli::Int())->check(CLI::Range(1, 3600000));
 
+    CLI::App *ck = app.add_subcommand("check", "read a scenario and check its table without flying");
+    ck->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
+
     CLI::App *pg = app.add_subcommand("ping", "one runner heartbeat on GNC_CTL");
     pg->add_option("--url", url, url_help)->required();
 
@@ -216,6 +223,19 @@ int main(int argc, char **argv)
             return logger(url, log, idle_ms);
         }
         const sim::Scenario scn = sim::load_scenario(scn_path);
+        if (*ck) {
+            (void)sil::run_uploads(scn, {});                   // a table file through the upload path
+            (void)sil::make_fixed_backend(scn);                // the boot table through the loader
+            host::Summary s;
+            sil::run_header(scn, "check", "", s);
+            s.add_str("mission", scn.mission);
+            s.add_int("period_us", scn.period_us);
+            s.add_int("steps", static_cast<std::int64_t>(scn.n_steps()));
+            std::string j = s.json();
+            j.erase(std::remove(j.begin(), j.end(), '\n'), j.end());
+            std::cout << j << "\n";
+            return 0;
+        }
         if (*run) {
             sil::InprocOptions o;
             o.url = url.empty() ? "memq://" : url;
