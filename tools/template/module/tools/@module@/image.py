@@ -22,5 +22,15 @@ LAYOUT = image_writer.Layout(_MOD.table_id, _MOD.table_layout, PAYLOAD, 20, (), 
 NAMES = [n for n, _, _ in design.TABLES]
 
 
+def params(name):
+    """Raw integer fields of a boot table (the campaign runner's table dispersions start here)."""
+    return design.table(name)
+
+
+def build(name, revision=1, sets=None):
+    """The image of boot table `name` with --set style overrides."""
+    return LAYOUT.build(params(name), revision, sets)
+
+
 def main(args):
-    return image_writer.main(args, LAYOUT, NAMES, design.table)
+    return image_writer.main(args, LAYOUT, NAMES, params)
