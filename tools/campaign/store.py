@@ -23,8 +23,12 @@ class Store(object):
 
     def begin(self, c, resume):
         """Checks (resume) or writes the campaign's identity; returns the runs already done."""
+        import numpy
+        # numpy's Generator streams are stable within a release series, not promised across
+        # them (NEP 19): the store names the numpy that drew its inputs, and a resume under
+        # another refuses rather than mixing two draws.
         meta = {"name": c.name, "runs": c.runs, "seed": c.seed, "digest": digest(c), "campaign": c.path,
-                "base": c.base, "mission": c.mission}
+                "base": c.base, "mission": c.mission, "numpy": numpy.__version__}
         parts = glob.glob(os.path.join(self.dir, "part-*.parquet"))
         if os.path.exists(self.meta_path()):
             with open(self.meta_path(), encoding="utf-8") as fh:
@@ -32,6 +36,9 @@ class Store(object):
             if parts and not resume:
                 raise SystemExit("campaign: %s already holds results of '%s'; --resume to continue it, or another --out"
                                  % (self.out, old.get("name")))
+            if parts and old.get("numpy", meta["numpy"]) != meta["numpy"]:
+                raise SystemExit("campaign: %s was drawn with numpy %s, this is %s: its inputs might differ; not resuming"
+                                 % (self.out, old.get("numpy"), meta["numpy"]))
             if parts and old.get("digest") != meta["digest"]:
                 raise SystemExit("campaign: %s holds results of another definition (%s, digest %s); not resuming"
                                  % (self.out, old.get("campaign"), old.get("digest")))
