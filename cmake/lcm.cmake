@@ -37,6 +37,7 @@ set_property(GLOBAL PROPERTY FSW_LCM_PYTHON_DIR ${FSW_LCM_PYTHON_DIR})
 # Explicit list (no glob): adding a type is a reviewed change to this list.
 set(FSW_LCM_TYPES
   sensor_frame_t actuator_cmd_t fsw_tlm_frame_t sim_truth_t table_upload_t table_ack_t sil_ctl_t
+  sensor_frame_v2_t actuator_cmd_v2_t table_upload_v2_t fsw_cmd_v2_t
   fsw_cmd_t)
 
 set(_lcm_src "")

@@ -28,7 +28,7 @@ HEALTH = [
     Bit("TBL_PENDING", 0x00080000, "a validated table waits for the mission's commit rule"),
 ]
 
-# Per-channel status bits of fsw_in_t.status (the bridge maps the plant's sensor_frame_t bits).
+# Per-channel status bits of fsw_in_t.status (the bridge maps the plant's sensor_frame_v2_t bits).
 STATUS = [Bit("STALE", 0x1, "the plant marks the sample stale"),
           Bit("SAT", 0x2, "the plant's sensor model clipped the count at full scale")]
 

@@ -39,12 +39,12 @@
 #include "fsw_table.h"
 #include "fsw_codec.h"
 
-#define FSW_IN_MAX   16u   /* sensor channels a frame can carry (sensor_frame_t.counts[16]) */
-#define FSW_ACT_MAX  16u   /* actuator channels (actuator_cmd_t.counts[16]) */
-#define FSW_TC_ARGS  8u    /* telecommand argument words (fsw_cmd_t.args[8]) */
+#define FSW_IN_MAX   16u   /* sensor channels a frame can carry (sensor_frame_v2_t.counts[16]) */
+#define FSW_ACT_MAX  16u   /* actuator channels (actuator_cmd_v2_t.counts[16]) */
+#define FSW_TC_ARGS  8u    /* telecommand argument words (fsw_cmd_v2_t.args[8]) */
 
 /* Telecommand ids on the wire: (mission id + 1) << FSW_TC_NS_SHIFT | local id (1..255), so one
-   mission's command can never be taken for another's (fsw_in_t.tc, gnc.fsw_cmd_t.cmd). */
+   mission's command can never be taken for another's (fsw_in_t.tc, gnc.fsw_cmd_v2_t.cmd). */
 #define FSW_TC_NS_SHIFT 8u
 #define FSW_TC_LOCAL_MASK 0xFFu
 #define FSW_TC_ID(mission, local) ((((uint32_t)(mission) + 1u) << FSW_TC_NS_SHIFT) | (uint32_t)(local))

@@ -4,6 +4,24 @@
 
 namespace bridge {
 
+namespace {
+
+// utime must be seq * period_us (spec 00 §5.2: frame k is sampled at t_k = k h, t_0 = 0). A seq
+// and a utime that disagree mean one of them is corrupted; neither can be trusted.
+bool time_consistent(const Frame &f)
+{
+    if (f.period_us <= 0) {
+        return false;
+    }
+    // seq is in [0, kMaxSeq] (header checked): the bound keeps the product in int64.
+    if (f.seq > INT64_MAX / f.period_us) {
+        return false;
+    }
+    return f.utime == f.seq * static_cast<std::int64_t>(f.period_us);
+}
+
+}  // namespace
+
 Reply Bridge::on_frame(const Frame &in)
 {
     Reply r{};
@@ -12,11 +30,18 @@ Reply Bridge::on_frame(const Frame &in)
         r.outcome = Outcome::Malformed;
         return r;
     }
-    const GateAction a = gate_.classify(in.seq);
-    if ((a == GateAction::Gap) && (in.seq - gate_.last() > kMaxSeqJump)) {
-        sat_inc(counters_.malformed);
-        r.outcome = Outcome::Malformed;
+    if (!time_consistent(in)) {
+        sat_inc(counters_.time_rej);
+        r.outcome = Outcome::BadTime;
         return r;
+    }
+    GateAction a = gate_.classify(in.seq);
+    if (a == GateAction::Jump) {
+        a = gate_.jump(in.seq, counters_);
+        if (a == GateAction::Jump) {
+            r.outcome = Outcome::Jump;
+            return r;
+        }
     }
     if ((a == GateAction::Duplicate) || (a == GateAction::Stale)) {
         const Command *c = gate_.answer(a, counters_);
@@ -109,10 +134,16 @@ TableAck Bridge::on_table(const TableChunk &c)
 Reply Bridge::on_bytes(const std::uint8_t *buf, std::size_t len)
 {
     Frame f{};
-    if (!decode_frame(buf, len, f)) {
-        sat_inc(counters_.malformed);
+    const Wire w = decode_frame(buf, len, f);
+    if (w != Wire::Ok) {
         Reply r{};
-        r.outcome = Outcome::Malformed;
+        if (w == Wire::BadCrc) {
+            sat_inc(counters_.crc_rej);
+            r.outcome = Outcome::BadCrc;
+        } else {
+            sat_inc(counters_.malformed);
+            r.outcome = Outcome::Malformed;
+        }
         return r;
     }
     return on_frame(f);

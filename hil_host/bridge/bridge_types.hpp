@@ -9,14 +9,14 @@
 
 namespace bridge {
 
-constexpr std::size_t kMaxCounts = 16;   // sensor_frame_t / actuator_cmd_t counts[16]
+constexpr std::size_t kMaxCounts = 16;   // sensor_frame_v2_t / actuator_cmd_v2_t counts[16]
 constexpr std::size_t kMaxTlm = 512;     // fsw_tlm_frame_t tlm[512]
 
 // Frames outside [0, kMaxSeq] are malformed, so seq +- 1 arithmetic never overflows.
 constexpr std::int64_t kMaxSeq = INT64_C(1) << 62;
 
-constexpr std::int8_t kStatusStale = 1;  // sensor_frame_t::STATUS_STALE
-constexpr std::int8_t kStatusSat = 2;    // sensor_frame_t::STATUS_SAT
+constexpr std::int8_t kStatusStale = 1;  // sensor_frame_v2_t::STATUS_STALE
+constexpr std::int8_t kStatusSat = 2;    // sensor_frame_v2_t::STATUS_SAT
 
 // Plant -> bridge: sensor frame k (integer counts only).
 struct Frame {
@@ -40,12 +40,12 @@ struct Command {
     std::uint32_t fsw_health = 0;   // carried as int32 bits on the wire
 };
 
-constexpr std::size_t kMaxChunk = 256;   // table_upload_t data[256]
+constexpr std::size_t kMaxChunk = 256;   // table_upload_v2_t data[256]
 constexpr std::int32_t kTableAccepted = 0;   // table_ack_t RESULT_*
 constexpr std::int32_t kTablePartial = 1;
 constexpr std::int32_t kTableRejected = 2;
 
-// Tools -> bridge: one table_upload_t chunk (data points into the decoded message).
+// Tools -> bridge: one table_upload_v2_t chunk (data points into the decoded message).
 struct TableChunk {
     std::int64_t utime = 0;
     std::int32_t table_id = 0;
@@ -66,13 +66,13 @@ struct TableAck {
     std::int32_t bytes_received = 0;
 };
 
-// Ground / test conductor -> flight software: one telecommand (gnc::fsw_cmd_t). The bridge
+// Ground / test conductor -> flight software: one telecommand (gnc::fsw_cmd_v2_t). The bridge
 // holds it until the first frame with seq >= apply_seq and hands it to the backend just before
 // that frame's step.
 constexpr std::size_t kCmdArgs = 8;
 constexpr std::size_t kCmdQueue = 16;     // telecommands held at once; more are refused (cmd_rej)
-constexpr std::int32_t kCmdMode = 1;      // fsw_cmd_t CMD_MODE; a mission's telecommands carry its
-                                          // namespaced ids (>= 0x100, hil_host/lcmtypes/fsw_cmd_t.lcm)
+constexpr std::int32_t kCmdMode = 1;      // fsw_cmd_v2_t CMD_MODE; a mission's telecommands carry its
+                                          // namespaced ids (>= 0x100, hil_host/lcmtypes/fsw_cmd_v2_t.lcm)
 struct FswCommand {
     std::int64_t utime = 0;
     std::int64_t apply_seq = 0;
@@ -94,6 +94,10 @@ struct Counters {
     std::int32_t table_rej = 0;      // table uploads refused (loader, module veto, or no uploads)
     std::int32_t cmds = 0;           // telecommands handed to the flight software
     std::int32_t cmd_rej = 0;        // telecommands refused by the bridge (queue full, unknown, no backend support)
+    std::int32_t crc_rej = 0;        // messages refused on their crc32 (sensor frames, table chunks, telecommands)
+    std::int32_t time_rej = 0;       // sensor frames whose utime != seq * period_us
+    std::int32_t jump_rej = 0;       // sensor frames whose seq jumps beyond the window (kMaxSeqJump)
+    std::int32_t resyncs = 0;        // deliberate resynchronisations to an out-of-window seq (kResyncFrames)
 };
 
 // Bridge -> logger: telemetry of step k plus the counters.
@@ -115,11 +119,11 @@ inline void sat_inc(std::int32_t &c, std::int64_t by = 1)
 }
 
 // "rejected" of fsw_tlm_frame_t: every rejection event, i.e. nonfinite_rej + range_rej +
-// table_rej + malformed, saturating.
+// table_rej + malformed + crc_rej + time_rej + jump_rej, saturating.
 inline std::int32_t rejected_total(const Counters &c)
 {
     const std::int64_t v = static_cast<std::int64_t>(c.nonfinite_rej) + c.range_rej + c.table_rej +
-                           c.malformed;
+                           c.malformed + c.crc_rej + c.time_rej + c.jump_rej;
     return (v > INT32_MAX) ? INT32_MAX : static_cast<std::int32_t>(v);
 }
 

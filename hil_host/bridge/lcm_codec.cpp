@@ -2,11 +2,15 @@
 
 #include <climits>
 
+extern "C" {
+#include "fx.h"
+}
+
 namespace bridge {
 
 // One meaning per status bit on both sides of the codec.
-static_assert(kStatusStale == gnc::sensor_frame_t::STATUS_STALE, "bridge STALE bit != wire");
-static_assert(kStatusSat == gnc::sensor_frame_t::STATUS_SAT, "bridge SAT bit != wire");
+static_assert(kStatusStale == gnc::sensor_frame_v2_t::STATUS_STALE, "bridge STALE bit != wire");
+static_assert(kStatusSat == gnc::sensor_frame_v2_t::STATUS_SAT, "bridge SAT bit != wire");
 
 namespace {
 
@@ -31,6 +35,40 @@ int encode_any(const M &m, std::uint8_t *buf, std::size_t cap)
     return (r == need) ? r : -1;
 }
 
+constexpr std::size_t kCrcLen = 4u;   // crc32 is the last field: the last 4 encoded bytes
+
+std::uint32_t crc_of(const std::uint8_t *buf, std::size_t n)
+{
+    return fx_crc32(0u, buf, n - kCrcLen);
+}
+
+// LCM encodes int32 big-endian.
+void put_be32(std::uint8_t *p, std::uint32_t v)
+{
+    p[0] = static_cast<std::uint8_t>(v >> 24);
+    p[1] = static_cast<std::uint8_t>(v >> 16);
+    p[2] = static_cast<std::uint8_t>(v >> 8);
+    p[3] = static_cast<std::uint8_t>(v);
+}
+
+std::uint32_t get_be32(const std::uint8_t *p)
+{
+    return (static_cast<std::uint32_t>(p[0]) << 24) | (static_cast<std::uint32_t>(p[1]) << 16) |
+           (static_cast<std::uint32_t>(p[2]) << 8) | static_cast<std::uint32_t>(p[3]);
+}
+
+// Encodes, then overwrites the crc32 field in the bytes (whatever m.crc32 held).
+template <typename M>
+int encode_sealed(const M &m, std::uint8_t *buf, std::size_t cap)
+{
+    const int n = encode_any(m, buf, cap);
+    if (n >= static_cast<int>(kCrcLen)) {
+        const std::size_t un = static_cast<std::size_t>(n);
+        put_be32(buf + un - kCrcLen, crc_of(buf, un));
+    }
+    return n;
+}
+
 template <typename M>
 bool decode_any(const std::uint8_t *buf, std::size_t len, M &m)
 {
@@ -41,9 +79,25 @@ bool decode_any(const std::uint8_t *buf, std::size_t len, M &m)
     return m.decode(buf, 0, n) == m.getEncodedSize();
 }
 
+// The CRC is checked on the received bytes; the length is the type's (fixed) encoded size, so
+// trailing bytes beyond it are outside the seal and ignored, as LCM's decode ignores them.
+template <typename M>
+Wire decode_sealed(const std::uint8_t *buf, std::size_t len, M &m)
+{
+    if (!decode_any(buf, len, m)) {
+        return Wire::Malformed;
+    }
+    const std::size_t n = static_cast<std::size_t>(m.getEncodedSize());
+    if (get_be32(buf + n - kCrcLen) != crc_of(buf, n)) {
+        m = M{};   // nothing of a message that failed its check is handed out
+        return Wire::BadCrc;
+    }
+    return Wire::Ok;
+}
+
 }  // namespace
 
-void to_lcm(const Frame &f, gnc::sensor_frame_t &m)
+void to_lcm(const Frame &f, gnc::sensor_frame_v2_t &m)
 {
     m.utime = f.utime;
     m.seq = f.seq;
@@ -57,7 +111,7 @@ void to_lcm(const Frame &f, gnc::sensor_frame_t &m)
     m.plant_flags = f.plant_flags;
 }
 
-bool from_lcm(const gnc::sensor_frame_t &m, Frame &f)
+bool from_lcm(const gnc::sensor_frame_v2_t &m, Frame &f)
 {
     if (!n_ok(m.n_counts, kMaxCounts)) {
         return false;
@@ -75,7 +129,7 @@ bool from_lcm(const gnc::sensor_frame_t &m, Frame &f)
     return true;
 }
 
-void to_lcm(const Command &c, gnc::actuator_cmd_t &m)
+void to_lcm(const Command &c, gnc::actuator_cmd_v2_t &m)
 {
     m.utime = c.utime;
     m.seq = c.seq;
@@ -87,7 +141,7 @@ void to_lcm(const Command &c, gnc::actuator_cmd_t &m)
     m.fsw_health = bits_to_i32(c.fsw_health);
 }
 
-bool from_lcm(const gnc::actuator_cmd_t &m, Command &c)
+bool from_lcm(const gnc::actuator_cmd_v2_t &m, Command &c)
 {
     if (!n_ok(m.n_counts, kMaxCounts)) {
         return false;
@@ -124,23 +178,32 @@ void to_lcm(const Telemetry &t, gnc::fsw_tlm_frame_t &m)
     m.table_rej = c.table_rej;
 }
 
-int encode(const gnc::sensor_frame_t &m, std::uint8_t *buf, std::size_t cap) { return encode_any(m, buf, cap); }
-int encode(const gnc::actuator_cmd_t &m, std::uint8_t *buf, std::size_t cap) { return encode_any(m, buf, cap); }
+int encode(const gnc::sensor_frame_v2_t &m, std::uint8_t *buf, std::size_t cap) { return encode_sealed(m, buf, cap); }
+int encode(const gnc::actuator_cmd_v2_t &m, std::uint8_t *buf, std::size_t cap) { return encode_sealed(m, buf, cap); }
 int encode(const gnc::fsw_tlm_frame_t &m, std::uint8_t *buf, std::size_t cap) { return encode_any(m, buf, cap); }
+int encode(const gnc::fsw_cmd_v2_t &m, std::uint8_t *buf, std::size_t cap) { return encode_sealed(m, buf, cap); }
+int encode(const gnc::table_upload_v2_t &m, std::uint8_t *buf, std::size_t cap) { return encode_sealed(m, buf, cap); }
 
-bool decode_frame(const std::uint8_t *buf, std::size_t len, Frame &f)
+Wire decode(const std::uint8_t *buf, std::size_t len, gnc::sensor_frame_v2_t &m) { return decode_sealed(buf, len, m); }
+Wire decode(const std::uint8_t *buf, std::size_t len, gnc::actuator_cmd_v2_t &m) { return decode_sealed(buf, len, m); }
+Wire decode(const std::uint8_t *buf, std::size_t len, gnc::fsw_cmd_v2_t &m) { return decode_sealed(buf, len, m); }
+Wire decode(const std::uint8_t *buf, std::size_t len, gnc::table_upload_v2_t &m) { return decode_sealed(buf, len, m); }
+
+Wire decode_frame(const std::uint8_t *buf, std::size_t len, Frame &f)
 {
-    gnc::sensor_frame_t m{};
-    return decode_any(buf, len, m) && from_lcm(m, f);
+    gnc::sensor_frame_v2_t m{};
+    const Wire w = decode_sealed(buf, len, m);
+    return (w != Wire::Ok) ? w : (from_lcm(m, f) ? Wire::Ok : Wire::Malformed);
 }
 
-bool decode_command(const std::uint8_t *buf, std::size_t len, Command &c)
+Wire decode_command(const std::uint8_t *buf, std::size_t len, Command &c)
 {
-    gnc::actuator_cmd_t m{};
-    return decode_any(buf, len, m) && from_lcm(m, c);
+    gnc::actuator_cmd_v2_t m{};
+    const Wire w = decode_sealed(buf, len, m);
+    return (w != Wire::Ok) ? w : (from_lcm(m, c) ? Wire::Ok : Wire::Malformed);
 }
 
-void to_lcm(const FswCommand &c, gnc::fsw_cmd_t &m)
+void to_lcm(const FswCommand &c, gnc::fsw_cmd_v2_t &m)
 {
     m.utime = c.utime;
     m.apply_seq = c.apply_seq;
@@ -148,17 +211,18 @@ void to_lcm(const FswCommand &c, gnc::fsw_cmd_t &m)
     for (std::size_t i = 0; i < kCmdArgs; ++i) { m.args[i] = c.args[i]; }
 }
 
-bool decode_fsw_cmd(const std::uint8_t *buf, std::size_t len, FswCommand &c)
+Wire decode_fsw_cmd(const std::uint8_t *buf, std::size_t len, FswCommand &c)
 {
-    gnc::fsw_cmd_t m{};
-    if (!decode_any(buf, len, m)) {
-        return false;
+    gnc::fsw_cmd_v2_t m{};
+    const Wire w = decode_sealed(buf, len, m);
+    if (w != Wire::Ok) {
+        return w;
     }
     c.utime = m.utime;
     c.apply_seq = m.apply_seq;
     c.cmd = m.cmd;
     for (std::size_t i = 0; i < kCmdArgs; ++i) { c.args[i] = m.args[i]; }
-    return true;
+    return Wire::Ok;
 }
 
 }  // namespace bridge

@@ -10,10 +10,35 @@ GateAction SeqGate::classify(std::int64_t seq) const
         a = have_cache_ ? GateAction::Duplicate : GateAction::Stale;
     } else if (seq < last_) {
         a = GateAction::Stale;
-    } else if (seq > last_ + 1) {   // seq > last_ here, so no overflow in the subtraction below
+    } else if (seq - last_ > kMaxSeqJump) {   // seq > last_ >= -1 here: no overflow
+        a = GateAction::Jump;
+    } else if (seq > last_ + 1) {
         a = GateAction::Gap;
     } else {
         a = GateAction::Step;
+    }
+    return a;
+}
+
+GateAction SeqGate::jump(std::int64_t seq, Counters &c)
+{
+    if ((run_len_ > 0) && (seq == run_last_)) {
+        // a re-send of the run's newest frame: neither progress nor a break
+    } else if ((run_len_ > 0) && (seq == run_last_ + 1)) {   // seq <= kMaxSeq: no overflow
+        ++run_len_;
+        run_last_ = seq;
+    } else {
+        run_len_ = 1;
+        run_last_ = seq;
+    }
+    GateAction a = GateAction::Jump;
+    if (run_len_ >= kResyncFrames) {
+        sat_inc(c.resyncs);
+        run_len_ = 0;
+        run_last_ = -1;
+        a = GateAction::Gap;
+    } else {
+        sat_inc(c.jump_rej);
     }
     return a;
 }
@@ -31,6 +56,8 @@ const Command *SeqGate::commit(GateAction a, std::int64_t seq, const Command *cm
             }
             sat_inc(c.stepped);
             last_ = seq;
+            run_len_ = 0;   // an accepted frame ends any out-of-window run
+            run_last_ = -1;
             cache_ = *cmd;
             have_cache_ = true;
             out = &cache_;
@@ -43,6 +70,8 @@ const Command *SeqGate::commit(GateAction a, std::int64_t seq, const Command *cm
     case GateAction::Stale:
         sat_inc(c.stale);
         break;
+    case GateAction::Jump:
+        break;   // counted by jump()
     }
     return out;
 }

@@ -63,6 +63,12 @@ void FaultInjector::push(Packet p, std::vector<Packet> &out)
         ++c_.bitflipped;
         fate.bits = static_cast<std::uint8_t>(fate.bits | kFateBitflip);
     }
+    if (!targeted_done_ && (p.id == cfg_.flip_id) && ((cfg_.flip_bit / 8u) < p.bytes.size())) {
+        targeted_done_ = true;
+        p.bytes[cfg_.flip_bit / 8u] = static_cast<std::uint8_t>(p.bytes[cfg_.flip_bit / 8u] ^ (1u << (cfg_.flip_bit % 8u)));
+        ++c_.bitflipped;
+        fate.bits = static_cast<std::uint8_t>(fate.bits | kFateBitflip);
+    }
     if (dup) {
         ++c_.duplicated;
         fate.bits = static_cast<std::uint8_t>(fate.bits | kFateDuplicated);

@@ -6,6 +6,10 @@
 //   1. drop       (drop_ppm)      the packet is gone                            dropped++
 //   2. truncate   (truncate_ppm)  bytes cut to a random length in [0, size-1]   truncated++
 //   3. bit flip   (bitflip_ppm)   one random bit of the bytes inverted          bitflipped++
+//      targeted   (flip_id, flip_bit) the first packet with id == flip_id gets bit flip_bit
+//                 (byte flip_bit / 8, bit flip_bit % 8) inverted, once: a test can walk every
+//                 bit of a field, one run per bit; it draws nothing, so the random stream is
+//                 the same with or without it                                   bitflipped++
 //   4. duplicate  (dup_ppm)       a copy is delivered right after the packet    duplicated++
 //   5. reorder    (reorder_ppm)   if no packet is held, the packet is held back and released
 //                                 after d in [1, reorder_window] later packets have been
@@ -39,6 +43,9 @@ struct FaultConfig {
     std::uint32_t reorder_window = 1;   // >= 1; d drawn in [1, window]
     std::uint32_t bitflip_ppm = 0;
     std::uint32_t truncate_ppm = 0;
+    std::uint64_t flip_id = kNoFlip;    // targeted one-shot flip: packet id ...
+    std::uint32_t flip_bit = 0;         // ... and bit index in its bytes
+    static constexpr std::uint64_t kNoFlip = ~UINT64_C(0);
 };
 
 struct FaultCounters {
@@ -75,6 +82,7 @@ private:
     void release_held(std::vector<Packet> &out);
 
     FaultConfig cfg_;
+    bool targeted_done_ = false;
     Xoshiro256ss rng_;
     FaultCounters c_{};
     std::vector<Fate> trace_;

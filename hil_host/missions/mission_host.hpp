@@ -26,7 +26,7 @@ extern "C" {
 
 namespace gnc {
 class sim_truth_t;
-class actuator_cmd_t;
+class actuator_cmd_v2_t;
 }  // namespace gnc
 
 namespace host {
@@ -91,7 +91,7 @@ class MissionMetrics {
 public:
     virtual ~MissionMetrics() = default;
     virtual void on_truth(const gnc::sim_truth_t &t) = 0;
-    virtual void on_cmd(const gnc::actuator_cmd_t &c) = 0;
+    virtual void on_cmd(const gnc::actuator_cmd_v2_t &c) = 0;
     // v: the telemetry of step k in the mission's layout (tlm_layout(m)); t_s its sample time.
     virtual void on_tlm(const std::vector<std::int64_t> &v, double t_s) = 0;
     virtual void summary(Summary &s) const = 0;

@@ -6,7 +6,7 @@
 #include "channels.hpp"
 #include "gnc/sil_ctl_t.hpp"
 #include "gnc/table_ack_t.hpp"
-#include "gnc/table_upload_t.hpp"
+#include "gnc/table_upload_v2_t.hpp"
 #include "lcm_codec.hpp"
 
 namespace sil {
@@ -35,7 +35,7 @@ void BridgeNode::on_sensor_cb(const lcm_recv_buf_t *rb, const char *, void *user
     ++self->frames_;
     const bridge::Reply r = self->core_.on_bytes(static_cast<const std::uint8_t *>(rb->data), rb->data_size);
     if (r.publish_cmd) {
-        gnc::actuator_cmd_t m{};
+        gnc::actuator_cmd_v2_t m{};
         bridge::to_lcm(r.cmd, m);
         const int n = bridge::encode(m, self->buf_.data(), self->buf_.size());
         if (n > 0) { lcm_publish(self->lcm_, kChCmd, self->buf_.data(), static_cast<unsigned>(n)); }
@@ -51,11 +51,13 @@ void BridgeNode::on_sensor_cb(const lcm_recv_buf_t *rb, const char *, void *user
 void BridgeNode::on_table_cb(const lcm_recv_buf_t *rb, const char *, void *user)
 {
     auto *self = static_cast<BridgeNode *>(user);
-    gnc::table_upload_t m;
+    gnc::table_upload_v2_t m;
     bridge::TableAck a{};
-    if (m.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0 || m.n < 0 || m.n > 256) {
+    const bridge::Wire w = bridge::decode(static_cast<const std::uint8_t *>(rb->data), rb->data_size, m);
+    if (w != bridge::Wire::Ok || m.n < 0 || m.n > 256) {
         ++self->bad_uploads_;
-        bridge::sat_inc(self->core_.counters_mut().malformed);
+        bridge::sat_inc((w == bridge::Wire::BadCrc) ? self->core_.counters_mut().crc_rej
+                                                    : self->core_.counters_mut().malformed);
         a.result = bridge::kTableRejected;
         a.reason = 1;   // FSW_TBL_R_CHUNK_LEN: the chunk itself is unusable
     } else {
@@ -84,8 +86,12 @@ void BridgeNode::on_fsw_cmd_cb(const lcm_recv_buf_t *rb, const char *, void *use
 {
     auto *self = static_cast<BridgeNode *>(user);
     bridge::FswCommand c{};
-    if (!bridge::decode_fsw_cmd(static_cast<const std::uint8_t *>(rb->data), rb->data_size, c)) {
+    const bridge::Wire w = bridge::decode_fsw_cmd(static_cast<const std::uint8_t *>(rb->data), rb->data_size, c);
+    if (w != bridge::Wire::Ok) {
         bridge::sat_inc(self->core_.counters_mut().cmd_rej);
+        if (w == bridge::Wire::BadCrc) {
+            bridge::sat_inc(self->core_.counters_mut().crc_rej);
+        }
         return;
     }
     (void)self->core_.on_command(c);

@@ -1,7 +1,8 @@
 #include "metrics.hpp"
 
 #include "channels.hpp"
-#include "gnc/actuator_cmd_t.hpp"
+#include "lcm_codec.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/fsw_tlm_frame_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 #include "gnc/table_ack_t.hpp"
@@ -46,12 +47,16 @@ void MetricsTap::on_truth(const lcm_recv_buf_t *rb, const char *, void *user)
 void MetricsTap::on_cmd(const lcm_recv_buf_t *rb, const char *, void *user)
 {
     auto *self = static_cast<MetricsTap *>(user);
-    gnc::actuator_cmd_t c;
-    if (c.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0) {
+    gnc::actuator_cmd_v2_t c;
+    if (bridge::decode(static_cast<const std::uint8_t *>(rb->data), rb->data_size, c) != bridge::Wire::Ok) {
         return;
     }
     self->mission_->on_cmd(c);
     ++self->m_.cmd_n;
+    const auto *b = static_cast<const std::uint8_t *>(rb->data);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(rb->data_size); ++i) {
+        self->m_.cmd_digest = (self->m_.cmd_digest ^ b[i]) * UINT64_C(1099511628211);
+    }
 }
 
 void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)

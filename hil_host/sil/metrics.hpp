@@ -26,6 +26,10 @@ struct CoreMetrics {
     std::int32_t last_ack_result = -1, last_ack_reason = 0;
     std::map<std::string, std::int64_t> tlm;      // last decoded telemetry fields (raw)
     std::map<std::string, std::int64_t> bridge;   // last bridge counters of fsw_tlm_frame_t
+    // FNV-1a 64 over every GNC_CMD message's bytes in arrival order: two runs flew the same
+    // commands exactly when their digests agree (the bit-flip walk compares faulted runs with
+    // the clean one this way).
+    std::uint64_t cmd_digest = UINT64_C(14695981039346656037);
 };
 
 class MetricsTap {

@@ -6,16 +6,17 @@
 #include <stdexcept>
 
 #include "channels.hpp"
-#include "gnc/actuator_cmd_t.hpp"
-#include "gnc/fsw_cmd_t.hpp"
-#include "gnc/sensor_frame_t.hpp"
+#include "lcm_codec.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
+#include "gnc/fsw_cmd_v2_t.hpp"
+#include "gnc/sensor_frame_v2_t.hpp"
 #include "gnc/sil_ctl_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 #include "sensors/counts.hpp"
 
 // The plant status bits STALE and SAT are the wire bits; NonFinite is published as STALE.
-static_assert(sim::kStatusStale == gnc::sensor_frame_t::STATUS_STALE, "plant STALE bit != wire");
-static_assert(sim::kStatusSat == gnc::sensor_frame_t::STATUS_SAT, "plant SAT bit != wire");
+static_assert(sim::kStatusStale == gnc::sensor_frame_v2_t::STATUS_STALE, "plant STALE bit != wire");
+static_assert(sim::kStatusSat == gnc::sensor_frame_v2_t::STATUS_SAT, "plant SAT bit != wire");
 
 namespace sil {
 
@@ -31,6 +32,10 @@ fault::FaultConfig fault_config(const sim::FaultSetup &f)
     c.reorder_window = f.reorder_window;
     c.bitflip_ppm = f.bitflip_ppm;
     c.truncate_ppm = f.truncate_ppm;
+    if (f.flip_frame >= 0) {
+        c.flip_id = static_cast<std::uint64_t>(f.flip_frame);
+        c.flip_bit = f.flip_bit;
+    }
     return c;
 }
 
@@ -85,8 +90,13 @@ void PlantNode::on_ctl_cb(const lcm_recv_buf_t *rb, const char *, void *user)
 
 void PlantNode::on_cmd(const std::uint8_t *buf, std::size_t len)
 {
-    gnc::actuator_cmd_t m;
-    if (m.decode(buf, 0, static_cast<int>(len)) < 0 || m.n_counts < 0 || m.n_counts > 16) {
+    gnc::actuator_cmd_v2_t m;
+    const bridge::Wire w = bridge::decode(buf, len, m);
+    if (w == bridge::Wire::BadCrc) {
+        ++sum_.crc_cmds;   // refused before any field is used; the frame's re-send asks again
+        return;
+    }
+    if (w != bridge::Wire::Ok || m.n_counts < 0 || m.n_counts > 16) {
         ++sum_.bad_cmds;
         return;
     }
@@ -131,7 +141,7 @@ void PlantNode::inject_sensor_faults(sim::SensorFrame &f, double t_s)
 
 void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flags, bool through_faults)
 {
-    gnc::sensor_frame_t m{};
+    gnc::sensor_frame_v2_t m{};
     m.utime = f.utime_us;
     m.seq = static_cast<std::int64_t>(f.seq);
     m.period_us = static_cast<std::int32_t>(f.period_us);
@@ -141,17 +151,17 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
         std::int8_t st = 0;
         if (i < f.n_ch) {
             if ((f.status[i] & (sim::kStatusNonFinite | sim::kStatusStale)) != 0u) {
-                st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_STALE);
+                st = static_cast<std::int8_t>(st | gnc::sensor_frame_v2_t::STATUS_STALE);
             }
-            if ((f.status[i] & sim::kStatusSat) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_t::STATUS_SAT); }
+            if ((f.status[i] & sim::kStatusSat) != 0u) { st = static_cast<std::int8_t>(st | gnc::sensor_frame_v2_t::STATUS_SAT); }
         }
         m.status[i] = st;
     }
     m.scenario_flags = scn_.faults.any() ? 1 : 0;
     m.plant_flags = plant_flags;
-    const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
+    const int n = bridge::encode(m, buf_.data(), buf_.size());   // sealed with its crc32
     if (n < 0) {
-        throw std::runtime_error("sensor_frame_t encode failed");
+        throw std::runtime_error("sensor_frame_v2_t encode failed");
     }
     fault::Packet p;
     p.id = f.seq;
@@ -205,12 +215,12 @@ void PlantNode::publish_commands(std::uint64_t k, double t_s)
 {
     while (next_cmd_ < scn_.commands.size() && scn_.commands[next_cmd_].t_s <= t_s + 1e-9) {
         const sim::ScnCommand &c = scn_.commands[next_cmd_++];
-        gnc::fsw_cmd_t m{};
+        gnc::fsw_cmd_v2_t m{};
         m.utime = plant_->utime_us();
         m.apply_seq = static_cast<std::int64_t>(k);
         m.cmd = c.cmd;
         for (std::size_t i = 0; i < 8u; ++i) { m.args[i] = c.args[i]; }
-        const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
+        const int n = bridge::encode(m, buf_.data(), buf_.size());   // sealed with its crc32
         if (n > 0) {
             lcm_publish(lcm_, kChFswCmd, buf_.data(), static_cast<unsigned>(n));
         }
@@ -238,7 +248,7 @@ bool PlantNode::wait_command(std::uint64_t k, const sim::SensorFrame &f)
             }
             ++retx;
             ++sum_.retx;
-            publish_frame(f, gnc::sensor_frame_t::PLANT_RETX, true);
+            publish_frame(f, gnc::sensor_frame_v2_t::PLANT_RETX, true);
         }
         // Deliver anything the bridge still queued (its telemetry) before the next frame.
         while (lcm_handle_timeout(lcm_, 0) > 0) {
@@ -259,7 +269,7 @@ bool PlantNode::wait_command(std::uint64_t k, const sim::SensorFrame &f)
             if (retx < scn_.lockstep.retx_max) {
                 ++retx;
                 ++sum_.retx;
-                publish_frame(f, gnc::sensor_frame_t::PLANT_RETX, true);
+                publish_frame(f, gnc::sensor_frame_v2_t::PLANT_RETX, true);
             }
             next_retx = Clock::now() + std::chrono::milliseconds(scn_.lockstep.retx_ms);
             continue;

@@ -40,6 +40,7 @@ struct PlantSummary {
     std::uint64_t late_cmds = 0;      // commands for an earlier frame (dropped)
     std::uint64_t dup_cmds = 0;       // second command for the current frame (ignored)
     std::uint64_t bad_cmds = 0;       // undecodable commands
+    std::uint64_t crc_cmds = 0;       // commands refused on their crc32
     std::uint64_t nan_frames = 0;     // frames built from a NaN truth (fault window)
     std::uint64_t spike_frames = 0;   // frames with an out-of-range count (fault window)
     fault::FaultCounters faults{};

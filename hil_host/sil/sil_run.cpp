@@ -12,7 +12,8 @@
 #include "bridge.hpp"
 #include "bridge_node.hpp"
 #include "channels.hpp"
-#include "gnc/table_upload_t.hpp"
+#include "gnc/table_upload_v2_t.hpp"
+#include "lcm_codec.hpp"
 #include "log_tap.hpp"
 
 namespace sil {
@@ -65,7 +66,7 @@ void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
     const std::int32_t table_id = (total >= 2u) ? static_cast<std::int32_t>(u.image[0] | (u.image[1] << 8)) : 0;
     const std::uint32_t rev = (total >= 12u) ? le32(u.image, 8) : 0u;
     for (std::size_t off = 0; off < total; off += 256u) {
-        gnc::table_upload_t m{};
+        gnc::table_upload_v2_t m{};
         m.utime = utime_us;
         m.table_id = table_id;
         m.revision = static_cast<std::int32_t>(rev & 0x7FFFFFFFu);
@@ -76,7 +77,7 @@ void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
         for (std::size_t i = 0; i < n; ++i) {
             m.data[i] = u.image[off + i];
         }
-        const int len = m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+        const int len = bridge::encode(m, buf.data(), buf.size());   // sealed with its crc32
         if (len > 0) {
             lcm_publish(lcm, kChTblUp, buf.data(), static_cast<unsigned>(len));
         }
@@ -92,6 +93,7 @@ void plant_summary(const PlantSummary &p, host::Summary &s)
     s.add_int("plant_late_cmds", static_cast<std::int64_t>(p.late_cmds));
     s.add_int("plant_dup_cmds", static_cast<std::int64_t>(p.dup_cmds));
     s.add_int("plant_bad_cmds", static_cast<std::int64_t>(p.bad_cmds));
+    s.add_int("plant_crc_cmds", static_cast<std::int64_t>(p.crc_cmds));
     s.add_int("plant_nan_frames", static_cast<std::int64_t>(p.nan_frames));
     s.add_int("plant_spike_frames", static_cast<std::int64_t>(p.spike_frames));
     s.add_int("fault_dropped", static_cast<std::int64_t>(p.faults.dropped));

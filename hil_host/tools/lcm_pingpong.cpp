@@ -1,9 +1,9 @@
 // lcm_pingpong — raw LCM round-trip rate with sensor-frame-sized messages: the "LCM ceiling"
 // of spec 00 §9, reported beside the SIL rate (SIL rate / ceiling = efficiency).
 //
-// One round trip = the "plant" encodes a gnc::sensor_frame_t (118 bytes on the wire) into a
+// One round trip = the "plant" encodes a gnc::sensor_frame_v2_t (122 bytes on the wire) into a
 // static buffer and publishes it; the "bridge" decodes it and answers with a
-// gnc::actuator_cmd_t (98 bytes) echoing seq; the plant decodes the answer. No fsw_step, no
+// gnc::actuator_cmd_v2_t (98 bytes) echoing seq; the plant decodes the answer. No fsw_step, no
 // plant model: this is the transport and binding cost only.
 //
 //   memq  one lcm_t shared by both ends (memq is scoped to one instance, spec 00 §5.3);
@@ -43,8 +43,8 @@
 
 #include "fsw_cli.hpp"
 
-#include "gnc/actuator_cmd_t.hpp"
-#include "gnc/sensor_frame_t.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
+#include "gnc/sensor_frame_v2_t.hpp"
 
 namespace {
 
@@ -68,8 +68,8 @@ struct Options {
 // ---------------------------------------------------------------- bridge end
 struct Bridge {
     lcm_t *lcm = nullptr;
-    gnc::sensor_frame_t rx;
-    gnc::actuator_cmd_t tx;
+    gnc::sensor_frame_v2_t rx;
+    gnc::actuator_cmd_v2_t tx;
     std::array<std::uint8_t, kBufLen> buf{};
     long frames = 0;
     long errors = 0;
@@ -104,8 +104,8 @@ struct Bridge {
 // ---------------------------------------------------------------- plant end
 struct Plant {
     lcm_t *lcm = nullptr;
-    gnc::sensor_frame_t tx;
-    gnc::actuator_cmd_t rx;
+    gnc::sensor_frame_v2_t tx;
+    gnc::actuator_cmd_v2_t rx;
     std::array<std::uint8_t, kBufLen> buf{};
     bool got = false;
     long errors = 0;

@@ -22,7 +22,7 @@ namespace sim {
 constexpr std::size_t kMaxChannels = 16u;
 
 // Per-channel sensor status bits. STALE and SAT have the values and meanings of the wire
-// (gnc::sensor_frame_t STATUS_STALE / STATUS_SAT) and of the flight code (FSW_ST_STALE /
+// (gnc::sensor_frame_v2_t STATUS_STALE / STATUS_SAT) and of the flight code (FSW_ST_STALE /
 // FSW_ST_SAT): one meaning per bit everywhere. NonFinite is the plant's own detail; the plant
 // node publishes it as STALE.
 constexpr std::uint8_t kStatusStale = 0x01u;      // the sensor delivered no valid sample (dropout, out of range)

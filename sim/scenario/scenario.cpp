@@ -189,7 +189,8 @@ void parse_faults_lockstep(const YAML::Node &root, const Reader &r, const Missio
 {
     if (const YAML::Node f = root["faults"]) {
         r.check_keys(f, "faults", plus({"seed", "drop_ppm", "dup_ppm", "reorder_ppm", "reorder_window", "bitflip_ppm",
-                                        "truncate_ppm", "nan_s", "nan_channel", "spike_s", "spike_channel"},
+                                        "truncate_ppm", "flip_frame", "flip_bit", "nan_s", "nan_channel", "spike_s",
+                                        "spike_channel"},
                                        sec.fault_keys()));
         auto ppm = [&](const char *k, std::uint32_t &v) {
             if (f[k]) {
@@ -204,6 +205,12 @@ void parse_faults_lockstep(const YAML::Node &root, const Reader &r, const Missio
         ppm("reorder_ppm", s.faults.reorder_ppm);
         ppm("bitflip_ppm", s.faults.bitflip_ppm);
         ppm("truncate_ppm", s.faults.truncate_ppm);
+        if (f["flip_frame"]) {
+            s.faults.flip_frame = r.integer(f["flip_frame"], "faults.flip_frame", 0, INT64_C(1) << 40);
+        }
+        if (f["flip_bit"]) {
+            s.faults.flip_bit = static_cast<std::uint32_t>(r.integer(f["flip_bit"], "faults.flip_bit", 0, 8 * 1024 - 1));
+        }
         if (f["reorder_window"]) {
             s.faults.reorder_window = static_cast<std::uint32_t>(r.integer(f["reorder_window"], "faults.reorder_window", 1, 100));
         }
@@ -347,7 +354,8 @@ void parse_commands(const YAML::Node &root, const Reader &r, const iface::Missio
 
 bool FaultSetup::any() const
 {
-    return (drop_ppm | dup_ppm | reorder_ppm | bitflip_ppm | truncate_ppm) != 0u || nan_s[0] >= 0.0 || spike_s[0] >= 0.0;
+    return (drop_ppm | dup_ppm | reorder_ppm | bitflip_ppm | truncate_ppm) != 0u || nan_s[0] >= 0.0 || spike_s[0] >= 0.0 ||
+           flip_frame >= 0;
 }
 
 std::uint64_t Scenario::n_steps() const

@@ -83,6 +83,8 @@ struct FaultSetup {
     std::uint64_t seed = 1u;
     std::uint32_t drop_ppm = 0u, dup_ppm = 0u, reorder_ppm = 0u, reorder_window = 1u;
     std::uint32_t bitflip_ppm = 0u, truncate_ppm = 0u;
+    std::int64_t flip_frame = -1;      // targeted one-shot flip of bit flip_bit of frame flip_frame's
+    std::uint32_t flip_bit = 0u;       //   first transmission (encoded bytes, byte bit/8, bit bit%8)
     std::array<double, 2> nan_s{{-1.0, -1.0}};
     std::uint32_t nan_channel = 0u;
     std::array<double, 2> spike_s{{-1.0, -1.0}};
@@ -98,13 +100,13 @@ struct LockstepSetup {
     std::uint32_t retx_max = 2u;              // re-publications of one frame before it is missed
 };
 
-// One command of the scenario's test conductor (gnc::fsw_cmd_t), published by the plant node
+// One command of the scenario's test conductor (gnc::fsw_cmd_v2_t), published by the plant node
 // before the first frame at or after t_s: MODE (cmd 1, args[0] the mode number) or one of the
 // mission's telecommands (its namespaced id; args already in flight units).
 struct ScnCommand {
     double t_s = 0.0;
     std::string name;                         // MODE, or the telecommand's name (IMP_START)
-    std::int32_t cmd = 0;                     // gnc::fsw_cmd_t cmd
+    std::int32_t cmd = 0;                     // gnc::fsw_cmd_v2_t cmd
     std::array<std::int32_t, 8> args{};
 };
 

@@ -150,23 +150,188 @@ void gate_unchanged_on_reject(void **)
     assert_int_equal(m.rejected, 4);
 }
 
-// A forward jump beyond kMaxSeqJump is a corrupted seq, not a gap: refused as malformed, the
+// A forward jump beyond the window (kMaxSeqJump) is a corrupted seq, not a gap: refused, the
 // gate stays put and the next genuine frame steps. The largest legal jump is a gap.
 void gate_refuses_implausible_jump(void **)
 {
     bt::FakeBackend be;
     Bridge br(be, limits_pm(1000000));
     assert_true(br.on_frame(bt::make_frame(0, kPeriod)).outcome == Outcome::Stepped);
-    Frame f = bt::make_frame(1, kPeriod);
-    f.seq = 1 + (INT64_C(1) << 40);   // one high bit flipped
-    assert_true(br.on_frame(f).outcome == Outcome::Malformed);
-    f.seq = kMaxSeqJump + 1;          // last = 0: a jump of kMaxSeqJump + 1
-    assert_true(br.on_frame(f).outcome == Outcome::Malformed);
-    assert_int_equal(br.counters().malformed, 2);
+    Frame f = bt::make_frame(1 + (INT64_C(1) << 40), kPeriod);   // one high bit flipped, utime consistent
+    assert_true(br.on_frame(f).outcome == Outcome::Jump);
+    f = bt::make_frame(kMaxSeqJump + 1, kPeriod);                  // last = 0: one beyond the window
+    assert_true(br.on_frame(f).outcome == Outcome::Jump);
+    assert_int_equal(br.counters().jump_rej, 2);
+    assert_int_equal(br.counters().malformed, 0);
     assert_int_equal(br.gate().last(), 0);
     assert_true(br.on_frame(bt::make_frame(1, kPeriod)).outcome == Outcome::Stepped);
     assert_true(br.on_frame(bt::make_frame(1 + kMaxSeqJump, kPeriod)).outcome == Outcome::Gap);
     assert_int_equal(br.counters().gap_frames, static_cast<int>(kMaxSeqJump - 1));
+    assert_int_equal(br.counters().resyncs, 0);
+}
+
+// utime must be seq * period_us: a frame whose seq or utime was corrupted (in either) is refused.
+void gate_refuses_inconsistent_time(void **)
+{
+    bt::FakeBackend be;
+    Bridge br(be, limits_pm(1000000));
+    assert_true(br.on_frame(bt::make_frame(0, kPeriod)).outcome == Outcome::Stepped);
+    Frame f = bt::make_frame(1, kPeriod);
+    f.utime ^= INT64_C(1) << 44;    // the flipped utime of issue 18 (17 592 202 884 416 us)
+    assert_true(br.on_frame(f).outcome == Outcome::BadTime);
+    f = bt::make_frame(1, kPeriod);
+    f.seq = 2;                      // seq flipped, utime says frame 1: in the window, still refused
+    assert_true(br.on_frame(f).outcome == Outcome::BadTime);
+    assert_int_equal(br.counters().time_rej, 2);
+    assert_int_equal(br.gate().last(), 0);
+    assert_int_equal(be.seen.size(), 1);
+    assert_true(br.on_frame(bt::make_frame(1, kPeriod)).outcome == Outcome::Stepped);
+}
+
+// Every one of the 64 bits of seq, flipped in frame k with a utime that agrees (the sender itself
+// got it wrong, so neither the CRC nor the time rule can see it): the loop is never locked out.
+// Each flip is refused or stepped as a small gap, and the genuine frames that follow step, so at
+// most kMaxSeqJump - 1 commands are skipped and none after the next genuine frame.
+void gate_every_seq_bit(void **)
+{
+    const std::int64_t k = 43;
+    for (int b = 0; b < 64; ++b) {
+        bt::FakeBackend be;
+        Bridge br(be, limits_pm(1000000));
+        for (std::int64_t i = 0; i < k; ++i) {
+            assert_true(br.on_frame(bt::make_frame(i, kPeriod)).outcome == Outcome::Stepped);
+        }
+        const std::uint64_t flipped = static_cast<std::uint64_t>(k) ^ (UINT64_C(1) << b);
+        std::int64_t fs = 0;
+        std::memcpy(&fs, &flipped, sizeof fs);
+        Frame f = bt::make_frame(0, kPeriod);
+        f.seq = fs;
+        f.utime = (fs >= 0 && fs <= INT64_MAX / kPeriod) ? fs * kPeriod : f.utime;
+        const Outcome o = br.on_frame(f).outcome;
+        std::int64_t next = k;
+        if (o == Outcome::Gap || o == Outcome::Stepped) {
+            assert_true(fs > k - 1 && fs - (k - 1) <= kMaxSeqJump);   // only a small forward jump steps
+            next = fs + 1;
+        } else {
+            assert_true(o == Outcome::Jump || o == Outcome::Stale || o == Outcome::Malformed || o == Outcome::BadTime ||
+                        o == Outcome::Duplicate);
+        }
+        // The plant re-sends k (or has moved on to next): everything after steps normally.
+        for (std::int64_t i = next; i < next + 20; ++i) {
+            const Outcome oi = br.on_frame(bt::make_frame(i, kPeriod)).outcome;
+            assert_true(oi == Outcome::Stepped);
+        }
+        assert_int_equal(br.counters().resyncs, 0);
+    }
+}
+
+// A plant that genuinely jumped is followed, deliberately: kResyncFrames consecutive frames each
+// one ahead of the last (re-sends in between neither help nor hurt); a genuine in-window frame
+// in between ends the run.
+void gate_resynchronises_after_consistent_frames(void **)
+{
+    bt::FakeBackend be;
+    Bridge br(be, limits_pm(1000000));
+    assert_true(br.on_frame(bt::make_frame(0, kPeriod)).outcome == Outcome::Stepped);
+    const std::int64_t j = 5000;
+    assert_true(br.on_frame(bt::make_frame(j, kPeriod)).outcome == Outcome::Jump);
+    assert_true(br.on_frame(bt::make_frame(j, kPeriod)).outcome == Outcome::Jump);       // re-send
+    assert_true(br.on_frame(bt::make_frame(j + 1, kPeriod)).outcome == Outcome::Jump);
+    assert_true(br.on_frame(bt::make_frame(1, kPeriod)).outcome == Outcome::Stepped);     // run broken
+    assert_true(br.on_frame(bt::make_frame(j + 2, kPeriod)).outcome == Outcome::Jump);    // starts anew
+    assert_true(br.on_frame(bt::make_frame(j + 3, kPeriod)).outcome == Outcome::Jump);
+    assert_true(br.on_frame(bt::make_frame(j + 3, kPeriod)).outcome == Outcome::Jump);    // re-send
+    assert_true(br.on_frame(bt::make_frame(j + 4, kPeriod)).outcome == Outcome::Gap);     // resync
+    assert_int_equal(br.counters().resyncs, 1);
+    assert_int_equal(br.counters().jump_rej, 6);
+    assert_int_equal(br.gate().last(), j + 4);
+    assert_true(br.on_frame(bt::make_frame(j + 5, kPeriod)).outcome == Outcome::Stepped);
+    // a non-consecutive run (j+100, j+102, j+104) never resynchronises
+    for (std::int64_t i = 0; i < 6; ++i) {
+        assert_true(br.on_frame(bt::make_frame(j + 100 + 2 * i, kPeriod)).outcome == Outcome::Jump);
+    }
+    assert_int_equal(br.counters().resyncs, 1);
+}
+
+// The crc32 seals every encoded byte: each single-bit flip of an encoded sensor frame is refused
+// (BadCrc, or Malformed when the flip hits the fingerprint), and the gate is untouched.
+void crc_refuses_every_single_bit_flip(void **)
+{
+    bt::FakeBackend be;
+    Bridge br(be, limits_pm(1000000));
+    assert_true(br.on_frame(bt::make_frame(0, kPeriod)).outcome == Outcome::Stepped);
+    gnc::sensor_frame_v2_t m{};
+    to_lcm(bt::make_frame(1, kPeriod), m);
+    std::uint8_t buf[256];
+    const int n = encode(m, buf, sizeof buf);
+    assert_int_equal(n, 122);
+    int crc = 0, mal = 0;
+    for (int bit = 0; bit < n * 8; ++bit) {
+        std::uint8_t c[256];
+        std::memcpy(c, buf, static_cast<std::size_t>(n));
+        c[bit / 8] = static_cast<std::uint8_t>(c[bit / 8] ^ (1u << (bit % 8)));
+        const Outcome o = br.on_bytes(c, static_cast<std::size_t>(n)).outcome;
+        if (bit < 64) {
+            assert_true(o == Outcome::Malformed);   // fingerprint: not this type
+            ++mal;
+        } else {
+            assert_true(o == Outcome::BadCrc);
+            ++crc;
+        }
+    }
+    assert_int_equal(br.counters().crc_rej, crc);
+    assert_int_equal(br.counters().malformed, mal);
+    assert_int_equal(br.gate().last(), 0);
+    assert_int_equal(be.seen.size(), 1);
+    assert_true(br.on_bytes(buf, static_cast<std::size_t>(n)).outcome == Outcome::Stepped);
+    gnc::fsw_tlm_frame_t t{};
+    Telemetry tl{};
+    tl.counters = br.counters();
+    to_lcm(tl, t);
+    assert_int_equal(t.rejected, crc + mal);
+}
+
+// The other sealed types: a command, a telecommand and a table chunk refuse a flipped bit too,
+// and nothing of the refused message is handed out.
+void crc_seals_every_sealed_type(void **)
+{
+    std::uint8_t buf[512];
+    Command c{};
+    c.seq = 7; c.utime = 7 * kPeriod; c.n_counts = 1; c.counts[0] = 99;
+    gnc::actuator_cmd_v2_t a{};
+    to_lcm(c, a);
+    int n = encode(a, buf, sizeof buf);
+    assert_int_equal(n, 102);
+    Command d{};
+    assert_true(decode_command(buf, static_cast<std::size_t>(n), d) == Wire::Ok);
+    assert_int_equal(d.counts[0], 99);
+    buf[20] = static_cast<std::uint8_t>(buf[20] ^ 4u);
+    d = Command{};
+    assert_true(decode_command(buf, static_cast<std::size_t>(n), d) == Wire::BadCrc);
+    assert_int_equal(d.seq, 0);
+
+    FswCommand fc{};
+    fc.cmd = 1; fc.args[0] = 3; fc.apply_seq = 10;
+    gnc::fsw_cmd_v2_t fm{};
+    to_lcm(fc, fm);
+    n = encode(fm, buf, sizeof buf);
+    assert_int_equal(n, 64);
+    FswCommand fd{};
+    assert_true(decode_fsw_cmd(buf, static_cast<std::size_t>(n), fd) == Wire::Ok);
+    assert_int_equal(fd.args[0], 3);
+    buf[n - 1] = static_cast<std::uint8_t>(buf[n - 1] ^ 0x80u);   // the crc itself
+    assert_true(decode_fsw_cmd(buf, static_cast<std::size_t>(n), fd) == Wire::BadCrc);
+
+    gnc::table_upload_v2_t u{};
+    u.table_id = 2; u.revision = 5; u.total_len = 3; u.n = 3; u.data[0] = 1; u.data[1] = 2; u.data[2] = 3;
+    n = encode(u, buf, sizeof buf);
+    assert_int_equal(n, 294);
+    gnc::table_upload_v2_t v{};
+    assert_true(decode(buf, static_cast<std::size_t>(n), v) == Wire::Ok);
+    assert_int_equal(v.data[2], 3);
+    buf[40] = static_cast<std::uint8_t>(buf[40] ^ 1u);
+    assert_true(decode(buf, static_cast<std::size_t>(n), v) == Wire::BadCrc);
+    assert_int_equal(v.revision, 0);
 }
 
 // Out-of-range counts: last good value, STALE bit for the flight code, range_rej.
@@ -357,6 +522,7 @@ void si_nan_never_steps(void **)
     for (std::int64_t k = 0; k < 4; ++k) {
         SiFrame in{};
         in.seq = k;
+        in.utime = k * kPeriod;
         in.period_us = kPeriod;
         in.n_values = 2;
         in.value[0] = (k == 1) ? std::numeric_limits<double>::quiet_NaN() : 1.0;
@@ -377,23 +543,23 @@ void codec_roundtrip(void **)
     f.status[1] = kStatusSat;
     f.plant_flags = 2;
     f.scenario_flags = -5;
-    gnc::sensor_frame_t m{};
+    gnc::sensor_frame_v2_t m{};
     to_lcm(f, m);
     std::uint8_t buf[256];
     const int n = encode(m, buf, sizeof buf);
-    assert_int_equal(n, 118);
-    assert_int_equal(encode(m, buf, 117), -1);
+    assert_int_equal(n, 122);
+    assert_int_equal(encode(m, buf, 121), -1);
     Frame g{};
-    assert_true(decode_frame(buf, static_cast<std::size_t>(n), g));
+    assert_true(decode_frame(buf, static_cast<std::size_t>(n), g) == Wire::Ok);
     assert_int_equal(g.seq, 123);
     assert_int_equal(g.utime, f.utime);
     assert_memory_equal(g.counts, f.counts, sizeof f.counts);
     assert_memory_equal(g.status, f.status, sizeof f.status);
     assert_int_equal(g.plant_flags, 2);
     assert_int_equal(g.scenario_flags, -5);
-    assert_false(decode_frame(buf, static_cast<std::size_t>(n - 1), g));
+    assert_true(decode_frame(buf, static_cast<std::size_t>(n - 1), g) == Wire::Malformed);
     buf[0] = static_cast<std::uint8_t>(buf[0] ^ 1u);    // fingerprint
-    assert_false(decode_frame(buf, static_cast<std::size_t>(n), g));
+    assert_true(decode_frame(buf, static_cast<std::size_t>(n), g) == Wire::Malformed);
     m.n_counts = 17;
     assert_false(from_lcm(m, g));
 
@@ -402,12 +568,12 @@ void codec_roundtrip(void **)
     c.n_counts = 2;
     c.counts[0] = -3;
     c.fsw_health = 0x80000101u;
-    gnc::actuator_cmd_t a{};
+    gnc::actuator_cmd_v2_t a{};
     to_lcm(c, a);
     assert_int_equal(a.fsw_health, INT32_MIN + 0x101);
-    assert_int_equal(encode(a, buf, sizeof buf), 98);
+    assert_int_equal(encode(a, buf, sizeof buf), 102);
     Command d{};
-    assert_true(decode_command(buf, 98, d));
+    assert_true(decode_command(buf, 102, d) == Wire::Ok);
     assert_int_equal(d.fsw_health, 0x80000101u);
     assert_int_equal(d.counts[0], -3);
 
@@ -419,6 +585,7 @@ void codec_roundtrip(void **)
     t.tlm[2] = 0xEE;   // beyond tlm_len: zero on the wire
     t.counters.dups = 1; t.counters.stale = 2; t.counters.gaps = 3; t.counters.nonfinite_rej = 4;
     t.counters.range_rej = 5; t.counters.missed = 6; t.counters.table_rej = 7; t.counters.malformed = 8;
+    t.counters.crc_rej = 9; t.counters.time_rej = 10; t.counters.jump_rej = 11;
     gnc::fsw_tlm_frame_t tm{};
     to_lcm(t, tm);
     assert_int_equal(tm.tlm[1], 0xCD);
@@ -426,7 +593,7 @@ void codec_roundtrip(void **)
     assert_int_equal(tm.dups, 1); assert_int_equal(tm.stale, 2); assert_int_equal(tm.gaps, 3);
     assert_int_equal(tm.nonfinite_rej, 4); assert_int_equal(tm.range_rej, 5);
     assert_int_equal(tm.missed, 6); assert_int_equal(tm.table_rej, 7);
-    assert_int_equal(tm.rejected, 4 + 5 + 7 + 8);
+    assert_int_equal(tm.rejected, 4 + 5 + 7 + 8 + 9 + 10 + 11);
     assert_int_equal(encode(tm, buf, sizeof buf), -1);
     std::uint8_t big[600];
     assert_int_equal(encode(tm, big, sizeof big), 574);
@@ -516,6 +683,11 @@ int main(void)
         cmocka_unit_test(si_adapter_values),
         cmocka_unit_test(si_adapter_frames),
         cmocka_unit_test(si_nan_never_steps),
+        cmocka_unit_test(gate_refuses_inconsistent_time),
+        cmocka_unit_test(gate_every_seq_bit),
+        cmocka_unit_test(gate_resynchronises_after_consistent_frames),
+        cmocka_unit_test(crc_refuses_every_single_bit_flip),
+        cmocka_unit_test(crc_seals_every_sealed_type),
         cmocka_unit_test(codec_roundtrip),
         cmocka_unit_test(counters_saturate),
     };

@@ -20,11 +20,16 @@
 #include "gnc_sim_truth_t.h"
 #include "gnc_table_ack_t.h"
 #include "gnc_table_upload_t.h"
+#include "gnc_actuator_cmd_v2_t.h"
+#include "gnc_fsw_cmd_v2_t.h"
+#include "gnc_sensor_frame_v2_t.h"
+#include "gnc_table_upload_v2_t.h"
 
 /* Seeds, one per type (same in lcm_xlang_check.py). */
 enum {
     PAT_SEED_SENSOR = 101, PAT_SEED_ACT = 102, PAT_SEED_TLM = 103, PAT_SEED_TRUTH = 104,
-    PAT_SEED_UPLOAD = 105, PAT_SEED_ACK = 106, PAT_SEED_CTL = 107, PAT_SEED_CMD = 108
+    PAT_SEED_UPLOAD = 105, PAT_SEED_ACK = 106, PAT_SEED_CTL = 107, PAT_SEED_CMD = 108,
+    PAT_SEED_SENSOR2 = 109, PAT_SEED_ACT2 = 110, PAT_SEED_UPLOAD2 = 111, PAT_SEED_CMD2 = 112
 };
 
 static inline uint64_t pat_u64(uint64_t *s)
@@ -183,6 +188,65 @@ static inline void pat_cmd(gnc_fsw_cmd_t *m)
 }
 
 /* Encoded sizes (8-byte fingerprint + big-endian fields). Pinned: a change means a layout change. */
+/* The v2 types (issue 18): the v1 fields in order, then crc32 as one more draw. The pattern does
+ * not seal the message: these tests check the bindings, the bridge tests check the seal. */
+static inline void pat_sensor2(gnc_sensor_frame_v2_t *m)
+{
+    uint64_t s = PAT_SEED_SENSOR2;
+    int i;
+    memset(m, 0, sizeof *m);
+    m->utime = pat_i64(&s);
+    m->seq = pat_i64(&s);
+    m->period_us = pat_i32(&s);
+    m->n_counts = pat_i16(&s);
+    for (i = 0; i < 16; ++i) { m->counts[i] = pat_i32(&s); }
+    for (i = 0; i < 16; ++i) { m->status[i] = pat_i8(&s); }
+    m->scenario_flags = pat_i32(&s);
+    m->plant_flags = pat_i32(&s);
+    m->crc32 = pat_i32(&s);
+}
+
+static inline void pat_act2(gnc_actuator_cmd_v2_t *m)
+{
+    uint64_t s = PAT_SEED_ACT2;
+    int i;
+    memset(m, 0, sizeof *m);
+    m->utime = pat_i64(&s);
+    m->seq = pat_i64(&s);
+    m->n_counts = pat_i16(&s);
+    for (i = 0; i < 16; ++i) { m->counts[i] = pat_i32(&s); }
+    m->fsw_mode = pat_i32(&s);
+    m->fsw_health = pat_i32(&s);
+    m->crc32 = pat_i32(&s);
+}
+
+static inline void pat_upload2(gnc_table_upload_v2_t *m)
+{
+    uint64_t s = PAT_SEED_UPLOAD2;
+    int i;
+    memset(m, 0, sizeof *m);
+    m->utime = pat_i64(&s);
+    m->table_id = pat_i32(&s);
+    m->revision = pat_i32(&s);
+    m->total_len = pat_i32(&s);
+    m->offset = pat_i32(&s);
+    m->n = pat_i16(&s);
+    for (i = 0; i < 256; ++i) { m->data[i] = pat_u8(&s); }
+    m->crc32 = pat_i32(&s);
+}
+
+static inline void pat_cmd2(gnc_fsw_cmd_v2_t *m)
+{
+    uint64_t s = PAT_SEED_CMD2;
+    int i;
+    memset(m, 0, sizeof *m);
+    m->utime = pat_i64(&s);
+    m->apply_seq = pat_i64(&s);
+    m->cmd = pat_i32(&s);
+    for (i = 0; i < 8; ++i) { m->args[i] = pat_i32(&s); }
+    m->crc32 = pat_i32(&s);
+}
+
 #define PAT_SIZE_SENSOR 118
 #define PAT_SIZE_ACT     98
 #define PAT_SIZE_TLM    574
@@ -191,6 +255,10 @@ static inline void pat_cmd(gnc_fsw_cmd_t *m)
 #define PAT_SIZE_ACK     36
 #define PAT_SIZE_CTL     68
 #define PAT_SIZE_CMD     60
+#define PAT_SIZE_SENSOR2 122   /* the v2 types: + int32 crc32 */
+#define PAT_SIZE_ACT2    102
+#define PAT_SIZE_UPLOAD2 294
+#define PAT_SIZE_CMD2     64
 #define PAT_SIZE_MAX    574
 
 #endif /* TESTS_LCM_PATTERN_H */

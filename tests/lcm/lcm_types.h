@@ -37,6 +37,10 @@ LCM_TYPE_OPS_(table_upload_t, pat_upload)
 LCM_TYPE_OPS_(table_ack_t, pat_ack)
 LCM_TYPE_OPS_(sil_ctl_t, pat_ctl)
 LCM_TYPE_OPS_(fsw_cmd_t, pat_cmd)
+LCM_TYPE_OPS_(sensor_frame_v2_t, pat_sensor2)
+LCM_TYPE_OPS_(actuator_cmd_v2_t, pat_act2)
+LCM_TYPE_OPS_(table_upload_v2_t, pat_upload2)
+LCM_TYPE_OPS_(fsw_cmd_v2_t, pat_cmd2)
 
 #define LCM_TYPE_ROW_(T, LEN, FP) \
     { #T, sizeof(gnc_##T), (LEN), UINT64_C(FP), fill_##T, enc_##T, dec_##T, size_##T }
@@ -50,6 +54,10 @@ static const lcm_type_ops_t lcm_types[] = {
     LCM_TYPE_ROW_(table_ack_t,     PAT_SIZE_ACK,    0x7E7B615B9FBCBA38),
     LCM_TYPE_ROW_(sil_ctl_t,       PAT_SIZE_CTL,    0x937B516171D38092),
     LCM_TYPE_ROW_(fsw_cmd_t,       PAT_SIZE_CMD,    0x20B66D8B1E07C406),
+    LCM_TYPE_ROW_(sensor_frame_v2_t, PAT_SIZE_SENSOR2, 0xE4917BD4F34CE046),
+    LCM_TYPE_ROW_(actuator_cmd_v2_t, PAT_SIZE_ACT2,    0xD97AC35854DEC6A4),
+    LCM_TYPE_ROW_(table_upload_v2_t, PAT_SIZE_UPLOAD2, 0x59352703DF03CECF),
+    LCM_TYPE_ROW_(fsw_cmd_v2_t,      PAT_SIZE_CMD2,    0xC5754E1E1F923ED4),
 };
 #define LCM_N_TYPES (sizeof lcm_types / sizeof lcm_types[0])
 
@@ -57,6 +65,7 @@ static const lcm_type_ops_t lcm_types[] = {
 typedef union {
     gnc_sensor_frame_t a; gnc_actuator_cmd_t b; gnc_fsw_tlm_frame_t c; gnc_sim_truth_t d;
     gnc_table_upload_t e; gnc_table_ack_t f; gnc_sil_ctl_t g; gnc_fsw_cmd_t h;
+    gnc_sensor_frame_v2_t i; gnc_actuator_cmd_v2_t j; gnc_table_upload_v2_t k; gnc_fsw_cmd_v2_t l;
 } lcm_any_t;
 
 static inline uint64_t lcm_be64(const uint8_t *p)

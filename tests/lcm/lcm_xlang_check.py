@@ -99,6 +99,32 @@ def expected(gnc):
     m.utime, m.apply_seq, m.cmd = p.i64(), p.i64(), p.i32()
     m.args = [p.i32() for _ in range(8)]
     out['fsw_cmd_t'] = m
+
+    # The v2 types: the v1 fields, then crc32 as one more draw (lcm_pattern.h pat_*2).
+    p = Pattern(109); m = gnc.sensor_frame_v2_t()
+    m.utime, m.seq, m.period_us, m.n_counts = p.i64(), p.i64(), p.i32(), p.i16()
+    m.counts = [p.i32() for _ in range(16)]; m.status = [p.i8() for _ in range(16)]
+    m.scenario_flags, m.plant_flags, m.crc32 = p.i32(), p.i32(), p.i32()
+    out['sensor_frame_v2_t'] = m
+
+    p = Pattern(110); m = gnc.actuator_cmd_v2_t()
+    m.utime, m.seq, m.n_counts = p.i64(), p.i64(), p.i16()
+    m.counts = [p.i32() for _ in range(16)]
+    m.fsw_mode, m.fsw_health, m.crc32 = p.i32(), p.i32(), p.i32()
+    out['actuator_cmd_v2_t'] = m
+
+    p = Pattern(111); m = gnc.table_upload_v2_t()
+    m.utime, m.table_id, m.revision, m.total_len, m.offset, m.n = (
+        p.i64(), p.i32(), p.i32(), p.i32(), p.i32(), p.i16())
+    m.data = bytes(p.u8() for _ in range(256))
+    m.crc32 = p.i32()
+    out['table_upload_v2_t'] = m
+
+    p = Pattern(112); m = gnc.fsw_cmd_v2_t()
+    m.utime, m.apply_seq, m.cmd = p.i64(), p.i64(), p.i32()
+    m.args = [p.i32() for _ in range(8)]
+    m.crc32 = p.i32()
+    out['fsw_cmd_v2_t'] = m
     return out
 
 

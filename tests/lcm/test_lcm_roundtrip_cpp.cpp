@@ -15,6 +15,10 @@
 #include "gnc/sim_truth_t.hpp"
 #include "gnc/table_ack_t.hpp"
 #include "gnc/table_upload_t.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
+#include "gnc/fsw_cmd_v2_t.hpp"
+#include "gnc/sensor_frame_v2_t.hpp"
+#include "gnc/table_upload_v2_t.hpp"
 #include "lcm_pattern.h"
 
 namespace {
@@ -75,6 +79,26 @@ void compare(const char *type, const gnc_sil_ctl_t &c, const gnc::sil_ctl_t &x)
 {
     CHECK_FIELD(utime); CHECK_FIELD(command); CHECK_ARRAY(scenario); CHECK_FIELD(seed);
     CHECK_FIELD(node_id); CHECK_FIELD(status);
+}
+void compare(const char *type, const gnc_sensor_frame_v2_t &c, const gnc::sensor_frame_v2_t &x)
+{
+    CHECK_FIELD(utime); CHECK_FIELD(seq); CHECK_FIELD(period_us); CHECK_FIELD(n_counts);
+    CHECK_ARRAY(counts); CHECK_ARRAY(status); CHECK_FIELD(scenario_flags); CHECK_FIELD(plant_flags);
+    CHECK_FIELD(crc32);
+}
+void compare(const char *type, const gnc_actuator_cmd_v2_t &c, const gnc::actuator_cmd_v2_t &x)
+{
+    CHECK_FIELD(utime); CHECK_FIELD(seq); CHECK_FIELD(n_counts); CHECK_ARRAY(counts);
+    CHECK_FIELD(fsw_mode); CHECK_FIELD(fsw_health); CHECK_FIELD(crc32);
+}
+void compare(const char *type, const gnc_table_upload_v2_t &c, const gnc::table_upload_v2_t &x)
+{
+    CHECK_FIELD(utime); CHECK_FIELD(table_id); CHECK_FIELD(revision); CHECK_FIELD(total_len);
+    CHECK_FIELD(offset); CHECK_FIELD(n); CHECK_ARRAY(data); CHECK_FIELD(crc32);
+}
+void compare(const char *type, const gnc_fsw_cmd_v2_t &c, const gnc::fsw_cmd_v2_t &x)
+{
+    CHECK_FIELD(utime); CHECK_FIELD(apply_seq); CHECK_FIELD(cmd); CHECK_ARRAY(args); CHECK_FIELD(crc32);
 }
 
 // One static scratch buffer per direction; the bindings encode into caller memory.
@@ -139,6 +163,13 @@ int main()
     run<gnc_table_ack_t, gnc::table_ack_t>("table_ack_t", pat_ack,
                                            gnc_table_ack_t_encode, PAT_SIZE_ACK);
     run<gnc_sil_ctl_t, gnc::sil_ctl_t>("sil_ctl_t", pat_ctl, gnc_sil_ctl_t_encode, PAT_SIZE_CTL);
+    run<gnc_sensor_frame_v2_t, gnc::sensor_frame_v2_t>("sensor_frame_v2_t", pat_sensor2,
+                                                       gnc_sensor_frame_v2_t_encode, PAT_SIZE_SENSOR2);
+    run<gnc_actuator_cmd_v2_t, gnc::actuator_cmd_v2_t>("actuator_cmd_v2_t", pat_act2,
+                                                       gnc_actuator_cmd_v2_t_encode, PAT_SIZE_ACT2);
+    run<gnc_table_upload_v2_t, gnc::table_upload_v2_t>("table_upload_v2_t", pat_upload2,
+                                                       gnc_table_upload_v2_t_encode, PAT_SIZE_UPLOAD2);
+    run<gnc_fsw_cmd_v2_t, gnc::fsw_cmd_v2_t>("fsw_cmd_v2_t", pat_cmd2, gnc_fsw_cmd_v2_t_encode, PAT_SIZE_CMD2);
 
     // Constants reach the C++ binding.
     const char *type = "constants";

@@ -26,7 +26,7 @@ constexpr std::int64_t kN = 3000;
 
 std::vector<std::uint8_t> encode_frame(const Frame &f)
 {
-    gnc::sensor_frame_t m{};
+    gnc::sensor_frame_v2_t m{};
     to_lcm(f, m);
     std::vector<std::uint8_t> b(static_cast<std::size_t>(m.getEncodedSize()));
     const int n = encode(m, b.data(), b.size());
@@ -44,7 +44,7 @@ struct Run {
     std::uint32_t obs_steps = 0;
     obs_out_t obs_last{};
     std::int64_t published_cmds = 0;
-    std::int64_t outcomes[6] = {};
+    std::int64_t outcomes[static_cast<int>(Outcome::BackendFailed) + 1] = {};
 };
 
 Run run_pipeline(const fault::FaultConfig &cfg)
@@ -75,7 +75,7 @@ Run run_pipeline(const fault::FaultConfig &cfg)
         r.outcomes[static_cast<int>(rep.outcome)]++;
         std::uint8_t buf[1024];
         if (rep.publish_cmd) {
-            gnc::actuator_cmd_t m{};
+            gnc::actuator_cmd_v2_t m{};
             to_lcm(rep.cmd, m);
             const int n = encode(m, buf, sizeof buf);
             assert_true(n > 0);
@@ -206,8 +206,10 @@ void single_fault_kinds(void **)
     assert_int_equal(r.obs_steps, r.bc.stepped);
 }
 
-// Bit flips and truncation: truncated packets never decode (malformed), nothing crashes, every
-// delivered packet is accounted for once.
+// Bit flips and truncation: every corrupted packet is refused before any field is used —
+// truncated ones never decode (malformed), flipped ones fail their crc32 (crc_rej; malformed when
+// the flip hits the fingerprint) — nothing crashes, every delivered packet is accounted for once,
+// and no corrupted value reaches the flight code.
 void corrupted_bytes_rejected(void **)
 {
     fault::FaultConfig c{};
@@ -223,16 +225,22 @@ void corrupted_bytes_rejected(void **)
     }
     assert_int_equal(trunc_only, r.fc.truncated);
     assert_true(r.bc.malformed >= static_cast<std::int32_t>(r.fc.truncated));
-    assert_true(r.bc.malformed <= static_cast<std::int32_t>(r.fc.truncated + r.fc.bitflipped));
+    // Exactly the delivered packets that differ from their frame's clean encoding are refused.
+    const std::int32_t period = static_cast<std::int32_t>(OBS_TBL_50HZ_PHYS.period_us);
+    std::int32_t corrupted = 0;
+    for (const fault::Packet &p : r.delivered) {
+        if (p.bytes != encode_frame(bt::make_frame(static_cast<std::int64_t>(p.id), period))) { ++corrupted; }
+    }
+    assert_true(corrupted > 0);
+    assert_int_equal(r.bc.malformed + r.bc.crc_rej, corrupted);
+    assert_int_equal(r.bc.range_rej + r.bc.time_rej + r.bc.jump_rej, 0);
     std::int64_t sum = 0;
     for (std::int64_t o : r.outcomes) { sum += o; }
     assert_int_equal(sum, r.delivered.size());
     assert_int_equal(r.outcomes[static_cast<int>(Outcome::BackendFailed)], 0);
     assert_int_equal(r.obs_steps, r.bc.stepped);
     assert_true(r.bc.stepped > 0);
-    // Note: LCM carries no CRC of its own; a flipped high bit of seq that still decodes moves
-    // "last" far ahead and, per the §5.2 table, every later frame is stale. That is why this
-    // test asserts accounting only (see hil_host/bridge/README.md, "Known limits").
+
 }
 
 bool same_packets(const std::vector<fault::Packet> &a, const std::vector<fault::Packet> &b)

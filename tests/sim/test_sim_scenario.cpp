@@ -61,7 +61,7 @@ SIM_TEST(test_core_keys)
         EXPECT_EQ_INT(s.lockstep.retx_ms, 50);
         EXPECT_EQ_INT(s.lockstep.retx_max, 3);
         EXPECT_EQ_INT(s.commands.size(), 2);
-        EXPECT_EQ_INT(s.commands[0].cmd, 1);                    // fsw_cmd_t CMD_MODE
+        EXPECT_EQ_INT(s.commands[0].cmd, 1);                    // fsw_cmd_v2_t CMD_MODE
         EXPECT_EQ_INT(s.commands[0].args[0], 1);                // STANDBY
         EXPECT_TRUE(s.commands[1].args[0] != 0 && s.commands[1].args[0] != 1 && s.commands[1].args[0] != 3);   // its own
         // A copy of a scenario owns its own mission part.

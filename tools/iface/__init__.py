@@ -23,7 +23,7 @@ REGISTRY = os.path.join(ROOT, "missions.json")
 EXEC_IFACE = os.path.join(ROOT, "fsw", "app", "fsw_iface.py")
 
 TC_NS_SHIFT = 8          # wire telecommand id = ((mission id + 1) << 8) | local id
-CMD_MODE = 1             # gnc.fsw_cmd_t CMD_MODE: args[0] = target mode
+CMD_MODE = 1             # gnc.fsw_cmd_v2_t CMD_MODE: args[0] = target mode
 TLM_MAX_BYTES = 512      # gnc.fsw_tlm_frame_t tlm[512]
 
 

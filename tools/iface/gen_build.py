@@ -166,7 +166,7 @@ def host_tables(ms):
          "extern const Name kExecModes[];", "extern const std::size_t kNumExecModes;",
          "extern const Name kExecHealth[];", "extern const std::size_t kNumExecHealth;",
          "extern const Name kTblReasons[];", "extern const std::size_t kNumTblReasons;",
-         "constexpr std::int32_t kCmdMode = 1;             // gnc.fsw_cmd_t CMD_MODE",
+         "constexpr std::int32_t kCmdMode = 1;             // gnc.fsw_cmd_v2_t CMD_MODE",
          "constexpr unsigned kTcNsShift = 8;               // telecommand id = (mission id + 1) << 8 | local", "",
          "}  // namespace iface", "", "#endif", ""]
     c = ["// iface_gen.cpp — " + BANNER, '#include "iface_gen.hpp"', "", "namespace iface {", "namespace {", ""]

@@ -73,7 +73,7 @@ def read(path, lcm_py, mission):
     S_all = columns(sen, _SENSOR)
     Cm, n_cmd = last_per_seq(cmd, _CMD)
     T, n_tru = last_per_seq(tru, _TRUTH)
-    sf = gnc.sensor_frame_t
+    sf = gnc.sensor_frame_v2_t
     return dict(common=C, sensor=S, sensor_all=S_all, n_sensor_msgs=n_sen, cmd=Cm, n_cmd_msgs=n_cmd,
                 truth=T, n_truth_msgs=n_tru, tlm=C["tlm"],
                 flags=dict(stale=sf.STATUS_STALE, sat=sf.STATUS_SAT, diverged=sf.PLANT_DIVERGED, retx=sf.PLANT_RETX))

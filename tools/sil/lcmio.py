@@ -17,9 +17,9 @@ LCM_SRC = os.path.join(ROOT, "hil_host", "lcmtypes")
 
 # Channel -> message type (hil_host/sil/channels.hpp); the same for every mission.
 CHANNELS = {
-    "GNC_SENSOR": "sensor_frame_t", "GNC_CMD": "actuator_cmd_t", "GNC_TLM": "fsw_tlm_frame_t",
-    "GNC_TRUTH": "sim_truth_t", "GNC_CTL": "sil_ctl_t", "GNC_TBL_UP": "table_upload_t",
-    "GNC_TBL_ACK": "table_ack_t", "GNC_FSW_CMD": "fsw_cmd_t",
+    "GNC_SENSOR": "sensor_frame_v2_t", "GNC_CMD": "actuator_cmd_v2_t", "GNC_TLM": "fsw_tlm_frame_t",
+    "GNC_TRUTH": "sim_truth_t", "GNC_CTL": "sil_ctl_t", "GNC_TBL_UP": "table_upload_v2_t",
+    "GNC_TBL_ACK": "table_ack_t", "GNC_FSW_CMD": "fsw_cmd_v2_t",
 }
 
 _tmpdirs = []

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "gnc/actuator_cmd_t.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 
 namespace host {
@@ -80,7 +80,7 @@ void ImpMetrics::on_truth(const gnc::sim_truth_t &t)
     ++truth_n;
 }
 
-void ImpMetrics::on_cmd(const gnc::actuator_cmd_t &c)
+void ImpMetrics::on_cmd(const gnc::actuator_cmd_v2_t &c)
 {
     if (c.n_counts > static_cast<std::int16_t>(IMP_ACT_MASK) && c.counts[IMP_ACT_MASK] != 0) {
         ++thr_on_steps;

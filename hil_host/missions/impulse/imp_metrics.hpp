@@ -18,7 +18,7 @@ class ImpMetrics final : public MissionMetrics {
 public:
     explicit ImpMetrics(const sim::Scenario &s);
     void on_truth(const gnc::sim_truth_t &t) override;
-    void on_cmd(const gnc::actuator_cmd_t &c) override;
+    void on_cmd(const gnc::actuator_cmd_v2_t &c) override;
     void on_tlm(const std::vector<std::int64_t> &v, double t_s) override;
     void summary(Summary &s) const override;
 

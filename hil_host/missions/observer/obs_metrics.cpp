@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "gnc/actuator_cmd_t.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 
 namespace host {
@@ -46,7 +46,7 @@ void ObsMetrics::on_truth(const gnc::sim_truth_t &t)
     ++truth_n;
 }
 
-void ObsMetrics::on_cmd(const gnc::actuator_cmd_t &c)
+void ObsMetrics::on_cmd(const gnc::actuator_cmd_v2_t &c)
 {
     for (int i = 0; i < 2 && i < c.n_counts; ++i) {
         peak_bdot_degs = std::fmax(peak_bdot_degs, std::fabs(c.counts[i] * kActLsb) / kDeg);

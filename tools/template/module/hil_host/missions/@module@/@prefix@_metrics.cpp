@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "@module@/@module@_section.hpp"
-#include "gnc/actuator_cmd_t.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 
 namespace host {
@@ -32,7 +32,7 @@ void @Class@Metrics::on_truth(const gnc::sim_truth_t &t)
     ++truth_n;
 }
 
-void @Class@Metrics::on_cmd(const gnc::actuator_cmd_t &c)
+void @Class@Metrics::on_cmd(const gnc::actuator_cmd_v2_t &c)
 {
     if (c.n_counts >= 1) {
         peak_torque_nm = std::fmax(peak_torque_nm, std::fabs(c.counts[0] * sim::k@Class@TorqueLsbNm));
