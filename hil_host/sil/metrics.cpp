@@ -1,5 +1,8 @@
 #include "metrics.hpp"
 
+#include <cstdio>
+#include <utility>
+
 #include "channels.hpp"
 #include "lcm_codec.hpp"
 #include "gnc/actuator_cmd_v2_t.hpp"
@@ -14,11 +17,28 @@ namespace {
 const char *const kExecFields[] = {"mode", "n_chan_rej", "n_stale_steps", "n_in_bad", "n_tbl_acc", "n_tbl_rej",
                                    "tbl_revision", "n_scrub_err", "n_safe", "n_mode_rej", "host_missed",
                                    "host_rejected", "n_tc", "n_tc_rej"};
+
+void fnv1a(std::uint64_t &h, const void *data, std::size_t n)
+{
+    const auto *b = static_cast<const std::uint8_t *>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+        h = (h ^ b[i]) * 0x100000001B3u;
+    }
+}
+
+std::string hex64(std::uint64_t v)
+{
+    char b[24];
+    std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
+    return b;
+}
+
 }  // namespace
 
 MetricsTap::MetricsTap(lcm_t *lcm, const sim::Scenario &scn)
     : lcm_(lcm), im_(host::iface_mission(scn.mission)), layout_(host::tlm_layout(im_)),
-      mission_(host::mission_host(scn.mission).make_metrics(scn)), i_health_(layout_.at("health"))
+      mission_(host::mission_host(scn.mission).make_metrics(scn)), i_health_(layout_.at("health")),
+      i_tbl_rev_(layout_.at("tbl_revision")), i_tbl_acc_(layout_.at("n_tbl_acc"))
 {
     subs_[0] = lcm_subscribe(lcm_, kChTruth, &MetricsTap::on_truth, this);
     subs_[1] = lcm_subscribe(lcm_, kChCmd, &MetricsTap::on_cmd, this);
@@ -47,16 +67,13 @@ void MetricsTap::on_truth(const lcm_recv_buf_t *rb, const char *, void *user)
 void MetricsTap::on_cmd(const lcm_recv_buf_t *rb, const char *, void *user)
 {
     auto *self = static_cast<MetricsTap *>(user);
+    fnv1a(self->m_.digest_cmd, rb->data, rb->data_size);
     gnc::actuator_cmd_v2_t c;
     if (bridge::decode(static_cast<const std::uint8_t *>(rb->data), rb->data_size, c) != bridge::Wire::Ok) {
         return;
     }
     self->mission_->on_cmd(c);
     ++self->m_.cmd_n;
-    const auto *b = static_cast<const std::uint8_t *>(rb->data);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(rb->data_size); ++i) {
-        self->m_.cmd_digest = (self->m_.cmd_digest ^ b[i]) * UINT64_C(1099511628211);
-    }
 }
 
 void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
@@ -64,6 +81,7 @@ void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
     auto *self = static_cast<MetricsTap *>(user);
     gnc::fsw_tlm_frame_t f;
     CoreMetrics &m = self->m_;
+    fnv1a(m.digest_tlm, rb->data, rb->data_size);
     if (f.decode(rb->data, 0, static_cast<int>(rb->data_size)) < 0 || f.tlm_len < 0 || f.tlm_len > 512 ||
         static_cast<std::uint32_t>(f.tlm_layout_version) != self->im_.layout_version ||
         !host::decode_tlm(self->layout_, f.tlm, static_cast<std::size_t>(f.tlm_len), self->last_)) {
@@ -81,6 +99,13 @@ void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
     m.bridge = {{"dups", f.dups}, {"stale", f.stale}, {"gaps", f.gaps}, {"rejected", f.rejected},
                 {"nonfinite_rej", f.nonfinite_rej}, {"range_rej", f.range_rej}, {"missed", f.missed},
                 {"table_rej", f.table_rej}};
+    if (m.tbl_revision_first < 0) {
+        m.tbl_revision_first = v[self->i_tbl_rev_];
+    }
+    if (v[self->i_tbl_acc_] != m.n_tbl_acc_last) {
+        m.n_tbl_acc_last = v[self->i_tbl_acc_];
+        m.t_tbl_commit_s = ts;
+    }
     ++m.tlm_n;
 }
 
@@ -93,6 +118,13 @@ void MetricsTap::on_ack(const lcm_recv_buf_t *rb, const char *, void *user)
     }
     self->m_.last_ack_result = a.result;
     self->m_.last_ack_reason = a.reason;
+    if (a.result == gnc::table_ack_t::RESULT_ACCEPTED) {
+        ++self->m_.ack_accepted;
+    } else if (a.result == gnc::table_ack_t::RESULT_REJECTED) {
+        ++self->m_.ack_rejected;
+    } else {
+        // a chunk stored, more expected: not an upload's outcome
+    }
     ++self->m_.ack_n;
 }
 
@@ -107,7 +139,7 @@ const CoreMetrics &MetricsTap::core() const
     return m_;
 }
 
-void MetricsTap::summary(host::Summary &s) const
+void MetricsTap::summary(host::Summary &s, const bridge::Counters *bridge_final) const
 {
     const CoreMetrics &m = core();
     s.add_str("mission", im_.name);
@@ -116,8 +148,22 @@ void MetricsTap::summary(host::Summary &s) const
     s.add_int("steps_truth", static_cast<std::int64_t>(m.truth_n));
     s.add_int("steps_tlm", static_cast<std::int64_t>(m.tlm_n));
     s.add_int("tlm_undecodable", static_cast<std::int64_t>(m.tlm_bad));
-    for (const auto &kv : m.bridge) {
-        s.add_int("bridge_" + kv.first, kv.second);
+    if (bridge_final != nullptr) {
+        const bridge::Counters &c = *bridge_final;
+        s.add_str("bridge_counters_from", "bridge core, end of run");
+        const std::pair<const char *, std::int32_t> kv[] = {
+            {"stepped", c.stepped}, {"dups", c.dups}, {"stale", c.stale}, {"gaps", c.gaps},
+            {"gap_frames", c.gap_frames}, {"nonfinite_rej", c.nonfinite_rej}, {"range_rej", c.range_rej},
+            {"malformed", c.malformed}, {"missed", c.missed}, {"table_rej", c.table_rej}, {"cmds", c.cmds},
+            {"cmd_rej", c.cmd_rej}, {"rejected", bridge::rejected_total(c)}};
+        for (const auto &e : kv) {
+            s.add_int(std::string("bridge_") + e.first, e.second);
+        }
+    } else {
+        s.add_str("bridge_counters_from", "last telemetry frame (the bridge is another process)");
+        for (const auto &kv : m.bridge) {
+            s.add_int("bridge_" + kv.first, kv.second);
+        }
     }
     for (const char *k : kExecFields) {
         const auto it = m.tlm.find(k);
@@ -132,6 +178,15 @@ void MetricsTap::summary(host::Summary &s) const
     s.add_hex("fsw_tbl_reason", reason);
     s.add_str("fsw_tbl_reason_text", reason == 0u ? std::string("none") : host::describe_reason(im_, reason));
     s.add_int("table_acks", static_cast<std::int64_t>(m.ack_n));
+    // Every mission's table counters, here so that no mission's summary can lack them.
+    s.add_int("table_uploads_accepted", static_cast<std::int64_t>(m.ack_accepted));
+    s.add_int("table_uploads_rejected", static_cast<std::int64_t>(m.ack_rejected));
+    s.add_int("table_revision_boot", m.tbl_revision_first);
+    const auto rev = m.tlm.find("tbl_revision");
+    s.add_int("table_revision_active", rev == m.tlm.end() ? -1 : rev->second);
+    s.add("t_table_commit_s", m.t_tbl_commit_s, "%.2f");
+    s.add_str("stream_digest_cmd", hex64(m.digest_cmd));
+    s.add_str("stream_digest_tlm", hex64(m.digest_tlm));
     mission_->summary(s);
 }
 

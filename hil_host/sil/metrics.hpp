@@ -14,6 +14,7 @@
 
 #include <lcm/lcm.h>
 
+#include "bridge_types.hpp"
 #include "mission_host.hpp"
 
 namespace sil {
@@ -26,10 +27,14 @@ struct CoreMetrics {
     std::int32_t last_ack_result = -1, last_ack_reason = 0;
     std::map<std::string, std::int64_t> tlm;      // last decoded telemetry fields (raw)
     std::map<std::string, std::int64_t> bridge;   // last bridge counters of fsw_tlm_frame_t
-    // FNV-1a 64 over every GNC_CMD message's bytes in arrival order: two runs flew the same
-    // commands exactly when their digests agree (the bit-flip walk compares faulted runs with
-    // the clean one this way).
-    std::uint64_t cmd_digest = UINT64_C(14695981039346656037);
+    // Table uploads as the ground sees them: final acks (a PARTIAL ack is one chunk stored).
+    std::uint64_t ack_accepted = 0, ack_rejected = 0;
+    std::int64_t tbl_revision_first = -1;         // active revision in the first telemetry
+    std::int64_t n_tbl_acc_last = 0;              // executive commit counter, last telemetry
+    double t_tbl_commit_s = -1.0;                 // last telemetry whose commit counter moved, -1 = none
+    // FNV-1a 64 of every command and every telemetry message, bytes as published, in arrival
+    // order: two runs with equal digests produced the same streams (the determinism check).
+    std::uint64_t digest_cmd = 0xCBF29CE484222325u, digest_tlm = 0xCBF29CE484222325u;
 };
 
 class MetricsTap {
@@ -43,8 +48,11 @@ public:
     const CoreMetrics &core() const;
     const host::MissionMetrics &mission() const { return *mission_; }
     std::shared_ptr<const host::MissionMetrics> mission_ptr() const { return mission_; }
-    // The core's keys (executive and bridge counters, decoded table reason), then the mission's.
-    void summary(host::Summary &s) const;
+    // The core's keys (executive, bridge and table counters, decoded table reason, stream
+    // digests), then the mission's. bridge_final: the bridge core's own counters at the end of
+    // the run (in process); without it (the bridge is another process) the bridge keys are
+    // those of the last telemetry frame, which cannot count a frame that arrived after it.
+    void summary(host::Summary &s, const bridge::Counters *bridge_final = nullptr) const;
 
 private:
     static void on_truth(const lcm_recv_buf_t *rb, const char *ch, void *user);
@@ -56,6 +64,7 @@ private:
     const host::TlmLayout &layout_;
     std::shared_ptr<host::MissionMetrics> mission_;
     std::size_t i_health_;
+    std::size_t i_tbl_rev_, i_tbl_acc_;
     std::vector<std::int64_t> last_;     // raw values of the last telemetry, in layout order
     lcm_subscription_t *subs_[4] = {nullptr, nullptr, nullptr, nullptr};
     mutable CoreMetrics m_{};

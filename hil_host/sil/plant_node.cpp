@@ -284,6 +284,8 @@ PlantSummary PlantNode::run()
     plant_->reset(scn_);
     sum_ = PlantSummary{};
     next_cmd_ = 0;
+    sum_.sync = sync_;
+    std::uint64_t missed_run = 0;
     const std::uint64_t n = scn_.n_steps();
     publish_ctl(gnc::sil_ctl_t::CMD_START, 0);
     for (k_ = 0; k_ < n; ++k_) {
@@ -299,8 +301,11 @@ PlantSummary PlantNode::run()
         publish_frame(f, 0, true);
         if (wait_command(k_, f)) {
             plant_->apply(cmd_);
+            missed_run = 0;
         } else {
             ++sum_.missed;   // the last command stays applied (spec 00 §5.2 step 4)
+            ++missed_run;
+            sum_.missed_run_max = (missed_run > sum_.missed_run_max) ? missed_run : sum_.missed_run_max;
             publish_ctl(gnc::sil_ctl_t::CMD_HEARTBEAT,
                         static_cast<std::int32_t>(sum_.missed > 0x7FFFFFFFu ? 0x7FFFFFFFu : sum_.missed));
         }

@@ -36,6 +36,7 @@ namespace sil {
 struct PlantSummary {
     std::uint64_t steps = 0;          // periods propagated
     std::uint64_t missed = 0;         // commands not received for their frame
+    std::uint64_t missed_run_max = 0; // longest run of consecutive missed commands (the loss-of-control rule)
     std::uint64_t retx = 0;           // frames re-published
     std::uint64_t late_cmds = 0;      // commands for an earlier frame (dropped)
     std::uint64_t dup_cmds = 0;       // second command for the current frame (ignored)
@@ -47,7 +48,11 @@ struct PlantSummary {
     bool diverged = false;
     double t_end_s = 0.0;
     std::string reason;               // why the run ended early (DIVERGED, no bridge)
-    bool deterministic() const { return missed == 0 && retx == 0; }
+    bool sync = false;                // memq lock-step (no clock in the loop)
+    // memq: every missed or re-sent frame is a function of the scenario and its fault seed, so
+    // faults do not make a run non-deterministic (the streams are compared by --determinism-check
+    // and the CTests). udpm: a re-sent or missed frame is a wall-clock decision.
+    bool deterministic() const { return sync || (missed == 0 && retx == 0); }
 };
 
 class PlantNode {

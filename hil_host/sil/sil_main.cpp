@@ -1,7 +1,7 @@
 // sil — software-in-the-loop driver (spec 00 §5), for any mission of the build.
 //
-//   sil run    --scenario F [--url memq://] [--log F] [--summary F] [--summary-json F]
-//              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...]
+//   sil run    --scenario F [--url memq://|udpm://...] [--log F] [--summary F] [--summary-json F]
+//              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...] [--determinism-check]
 //              plant + bridge (fixed-point flight code, or the mission's double reference) + log
 //              tap in ONE process on one lcm_t.
 //   sil plant  --scenario F --url udpm://... [--summary F] [--summary-json F] [--ready-timeout-ms N] [--progress]
@@ -11,19 +11,31 @@
 //   sil check  --scenario F    the scenario as a run would read it, its table (boot table, or the
 //              table file through the flight upload path), without flying: one JSON line, or the
 //              error and exit 1 (the campaign runner checks every dispersion's extremes with it)
-//              the two ends as separate processes (udpm); log with lcm-logger.
-// Exit: 0 run completed (also a DIVERGED end: that is a result, in the summary), 1 error,
-// 2 usage (CLI11 names the bad option), 77 lcm_create failed (no multicast on loopback).
+// Exit (README "sil run: the command-line contract"):
+//   0  run completed in control
+//   1  error: the scenario does not load or its table is refused (nothing flown), or the summary
+//      could not be written after the run
+//   2  usage: a bad option or option value, named on stderr; nothing flown
+//   3  LOSS OF CONTROL: the run flew, the plant diverged or missed more consecutive commands than
+//      the scenario's deadline covers; the summary (written) says why (sil_run.hpp loss_of_control)
+//   4  --determinism-check: the two flights' command/telemetry streams differ
+//   77 lcm_create failed (no multicast on loopback)
 #include "fsw_cli.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "bridge.hpp"
 #include "bridge_node.hpp"
@@ -36,6 +48,13 @@
 #include "sil_run.hpp"
 
 namespace {
+
+constexpr int kExitError = 1, kExitUsage = 2, kExitLossOfControl = 3, kExitNotDeterministic = 4;
+
+// A bad option value, found before anything flies: exit kExitUsage.
+struct UsageError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
 
 void write_text(const std::string &path, const std::string &s)
 {
@@ -63,7 +82,7 @@ lcm_t *create_or_exit(const std::string &url)
 // IMG@T: a table image file and the run time (s) before whose frame it is uploaded. Table id and
 // revision are the image header's own.
 sil::Upload parse_upload(const std::string &arg, double duration_s)
-{
+try {
     const auto at = arg.rfind('@');
     if (at == std::string::npos || at == 0 || at + 1 >= arg.size()) {
         throw std::invalid_argument("--upload " + arg + ": expected IMAGE@T_S (a table image file and a time in s)");
@@ -87,7 +106,89 @@ sil::Upload parse_upload(const std::string &arg, double duration_s)
         throw std::invalid_argument("--upload " + arg + ": time " + t + " s is not inside the run (duration " +
                                     std::to_string(duration_s) + " s)");
     }
-    return sil::upload_from_file(arg.substr(0, at), ts);
+    sil::Upload u = sil::upload_from_file(arg.substr(0, at), ts);
+    u.what = arg.substr(0, at);
+    return u;
+} catch (const std::invalid_argument &e) {
+    const std::string m = e.what();
+    throw UsageError(m.rfind("--upload", 0) == 0 ? m : "--upload " + arg + ": " + m);
+}
+
+// An output file named by an option: it must be creatable or writable now, so that a run is
+// never flown only to fail writing its result.
+void check_output(const char *opt, const std::string &path)
+{
+    if (path.empty()) {
+        return;
+    }
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            throw UsageError(std::string(opt) + " " + path + ": is a directory");
+        }
+        if (::access(path.c_str(), W_OK) != 0) {
+            throw UsageError(std::string(opt) + " " + path + ": not writable (" + std::strerror(errno) + ")");
+        }
+        return;
+    }
+    const std::size_t slash = path.rfind('/');
+    const std::string dir = (slash == std::string::npos) ? std::string(".") : (slash == 0 ? std::string("/") : path.substr(0, slash));
+    if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+        throw UsageError(std::string(opt) + " " + path + ": directory '" + dir + "' does not exist");
+    }
+    if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+        throw UsageError(std::string(opt) + " " + path + ": cannot create a file in '" + dir + "' (" +
+                         std::strerror(errno) + ")");
+    }
+}
+
+// Every option of `sil run`, checked before anything flies (README "sil run: the command-line
+// contract"). Fills o.
+void check_run(const sim::Scenario &scn, const std::string &url, const std::string &fsw,
+               const std::vector<std::string> &uploads, const std::string &log, const std::string &summary,
+               const std::string &summary_json, sil::InprocOptions &o)
+{
+    o.url = url.empty() ? "memq://" : url;
+    if (o.url.rfind("memq://", 0) != 0 && o.url.rfind("udpm://", 0) != 0) {
+        throw UsageError("--url " + o.url + ": sil run flies over memq:// (deterministic, the default) or "
+                         "udpm://GROUP:PORT?ttl=0");
+    }
+    const host::MissionHost &mh = host::mission_host(scn.mission);
+    const std::vector<std::string> kinds = mh.ref_kinds();
+    if (fsw != "fixed" && std::find(kinds.begin(), kinds.end(), fsw) == kinds.end()) {
+        std::string l = "fixed";
+        for (const std::string &k : kinds) {
+            l += ", " + k;
+        }
+        throw UsageError("--fsw " + fsw + ": not a flight software of the " + std::string(mh.iface().name) +
+                         " mission (" + l + ")");
+    }
+    o.fsw = fsw;
+    if (!uploads.empty() && fsw != "fixed") {
+        throw UsageError("--upload needs --fsw fixed: the reference flight software takes no table uploads");
+    }
+    for (const std::string &u : uploads) {
+        o.uploads.push_back(parse_upload(u, scn.duration_s));
+        try {
+            sil::check_upload(scn, o.uploads.back());
+        } catch (const std::invalid_argument &e) {
+            throw UsageError("--upload " + u + ": " + e.what());
+        }
+    }
+    check_output("--log", log);
+    check_output("--summary", summary);
+    check_output("--summary-json", summary_json);
+    const std::pair<const char *, const std::string *> outs[] = {{"--log", &log}, {"--summary", &summary},
+                                                                 {"--summary-json", &summary_json}};
+    for (std::size_t i = 0; i < 3u; ++i) {
+        for (std::size_t j = i + 1u; j < 3u; ++j) {
+            if (!outs[i].second->empty() && *outs[i].second == *outs[j].second) {
+                throw UsageError(std::string(outs[i].first) + " and " + outs[j].first + " name the same file '" +
+                                 *outs[i].second + "'");
+            }
+        }
+    }
+    o.log_path = log;
 }
 
 void write_summary(const host::Summary &s, const std::string &text, const std::string &json)
@@ -162,24 +263,30 @@ void progress_line(sil::PlantNode &pn, const char *who)
 }  // namespace
 
 int main(int argc, char **argv)
-{
+try {
     CLI::App app{"sil — software-in-the-loop driver: plant, bridge and flight code over LCM"};
     app.require_subcommand(1);
     std::string scn_path, url, log, summary, summary_json, fsw = "fixed";
     std::vector<std::string> uploads;
-    bool progress = false;
+    bool progress = false, det_check = false;
     int ready_ms = 10000, idle_ms = 30000;
     const std::string url_help = "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0";
+    const CLI::Validator non_empty(
+        [](std::string &v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "", "NonEmpty");
 
     CLI::App *run = app.add_subcommand("run", "plant + bridge + flight code in one process (memq by default)");
     run->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
-    run->add_option("--url", url, "LCM URL (default memq://)");
-    run->add_option("--log", log, "LCM event log to write");
-    run->add_option("--summary", summary, "summary text to write");
-    run->add_option("--summary-json", summary_json, "summary JSON to write");
-    run->add_option("--upload", uploads, "IMAGE@T_S: upload a table image before the frame at T_S");
-    run->add_option("--fsw", fsw, "flight software: fixed, or the mission's reference (ref, ...)");
-    run->add_flag("--progress", progress, "progress line on stderr");
+    run->add_option("--url", url, "LCM URL: memq:// (default) or udpm://...")->check(non_empty);
+    run->add_option("--log", log, "LCM event log to write")->check(non_empty);
+    run->add_option("--summary", summary, "summary text to write")->check(non_empty);
+    run->add_option("--summary-json", summary_json, "summary JSON to write")->check(non_empty);
+    run->add_option("--upload", uploads, "IMAGE@T_S: upload a table image (table id and revision from its "
+                                         "header) before the first frame at or after T_S s; repeatable");
+    run->add_option("--fsw", fsw, "flight software: fixed, or the mission's reference (ref, ...)")->check(non_empty);
+    run->add_flag("--progress", progress, "progress line on stderr")->disable_flag_override();
+    run->add_flag("--determinism-check", det_check,
+                  "fly the run twice and compare the command/telemetry streams (the determinism verdict)")
+        ->disable_flag_override();
 
     CLI::App *plant = app.add_subcommand("plant", "the plant node of a separate-process run");
     plant->add_option("--scenario", scn_path, "scenario YAML")->required()->check(CLI::ExistingFile);
@@ -212,7 +319,7 @@ int main(int argc, char **argv)
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
         const int rc = app.exit(e);
-        return (rc == 0) ? 0 : 2;
+        return (rc == 0) ? 0 : kExitUsage;
     }
 
     try {
@@ -238,16 +345,21 @@ int main(int argc, char **argv)
         }
         if (*run) {
             sil::InprocOptions o;
-            o.url = url.empty() ? "memq://" : url;
-            o.log_path = log;
+            check_run(scn, url, fsw, uploads, log, summary, summary_json, o);
             o.progress = progress;
-            o.fsw = fsw;
-            for (const std::string &u : uploads) {
-                o.uploads.push_back(parse_upload(u, scn.duration_s));
-            }
+            o.determinism_check = det_check;
             const sil::InprocResult r = sil::run_inproc(scn, o);
             std::cout << r.summary.text();
             write_summary(r.summary, summary, summary_json);
+            if (!r.loss_of_control.empty()) {
+                std::fprintf(stderr, "sil: LOSS OF CONTROL: %s\n", r.loss_of_control.c_str());
+                return kExitLossOfControl;
+            }
+            if (r.determinism_failed) {
+                std::fprintf(stderr, "sil: NOT DETERMINISTIC: two flights of the run published different "
+                                     "command or telemetry streams\n");
+                return kExitNotDeterministic;
+            }
             return 0;
         }
         if (*br) {
@@ -265,8 +377,11 @@ int main(int argc, char **argv)
             return rc == 0 ? 0 : 1;
         }
         // plant
+        check_output("--summary", summary);
+        check_output("--summary-json", summary_json);
         lcm_t *lcm = create_or_exit(url);
         host::Summary s;
+        std::string lost;
         {
             sil::PlantNode pn(lcm, scn, false);
             sil::MetricsTap mt(lcm, scn);
@@ -293,15 +408,27 @@ int main(int argc, char **argv)
             for (int i = 0; i < 20 && lcm_handle_timeout(lcm, 10) > 0; ++i) {
             }
             sil::run_header(scn, "sil-fsw", url, s);
-            sil::plant_summary(p, s);
+            sil::plant_summary(scn, p, s);
             mt.summary(s);
+            lost = sil::loss_of_control(scn, p);
         }
         lcm_destroy(lcm);
         std::cout << s.text();
         write_summary(s, summary, summary_json);
+        if (!lost.empty()) {
+            std::fprintf(stderr, "sil plant: LOSS OF CONTROL: %s\n", lost.c_str());
+            return kExitLossOfControl;
+        }
         return 0;
-    } catch (const std::exception &e) {
+    } catch (const UsageError &e) {
         std::fprintf(stderr, "sil: %s\n", e.what());
-        return 1;
+        return kExitUsage;
     }
+} catch (const std::exception &e) {
+    // Whatever escaped (also from CLI11's set-up or a summary write): a message, never an abort.
+    std::fprintf(stderr, "sil: %s\n", e.what());
+    return kExitError;
+} catch (...) {
+    std::fprintf(stderr, "sil: unexpected error\n");
+    return kExitError;
 }

@@ -1,8 +1,10 @@
 #include "sil_run.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -32,19 +34,28 @@ Upload upload_from_file(const std::string &path, double t_s)
 {
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) {
-        throw std::invalid_argument("table image '" + path + "': cannot be read (no such file)");
+        throw std::invalid_argument("table image '" + path + "': cannot be read (" + std::strerror(errno) + ")");
     }
     if (!S_ISREG(st.st_mode)) {
         throw std::invalid_argument("table image '" + path + "': not a regular file");
     }
+    if (static_cast<std::uint64_t>(st.st_size) > FSW_TABLE_CAP_BYTES) {
+        throw std::invalid_argument("table image '" + path + "': " + std::to_string(st.st_size) +
+                                    " bytes, more than the loader's " + std::to_string(FSW_TABLE_CAP_BYTES));
+    }
     std::ifstream f(path, std::ios::binary);
     if (!f) {
-        throw std::invalid_argument("table image '" + path + "': cannot be read (permission?)");
+        throw std::invalid_argument("table image '" + path + "': cannot be read (" + std::strerror(errno) + ")");
     }
     Upload u;
     u.t_s = t_s;
     u.what = path;
-    u.image.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    std::vector<char> bytes(static_cast<std::size_t>(st.st_size) + 1u);
+    f.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (f.bad()) {
+        throw std::invalid_argument("table image '" + path + "': read error");
+    }
+    u.image.assign(bytes.begin(), bytes.begin() + f.gcount());
     if (u.image.size() < FSW_TABLE_HDR_BYTES) {
         throw std::invalid_argument("table image '" + path + "': " + std::to_string(u.image.size()) +
                                     " bytes, shorter than the " + std::to_string(FSW_TABLE_HDR_BYTES) +
@@ -84,11 +95,42 @@ void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
     }
 }
 
-void plant_summary(const PlantSummary &p, host::Summary &s)
+std::uint64_t missed_run_bound(const sim::Scenario &scn)
+{
+    const std::uint64_t period_us = (scn.period_us == 0u) ? 1u : scn.period_us;
+    return static_cast<std::uint64_t>(scn.lockstep.deadline_ms) * 1000u / period_us;
+}
+
+std::string loss_of_control(const sim::Scenario &scn, const PlantSummary &p)
+{
+    std::string why;
+    if (p.diverged) {
+        // the plant's own words ("DIVERGED: ... |mu_y| = 30.3 deg > 30 deg"), without the prefix
+        const std::string pre = "DIVERGED: ";
+        why = "PLANT_DIVERGED: " + (p.reason.rfind(pre, 0) == 0 ? p.reason.substr(pre.size()) : p.reason);
+    }
+    if (p.missed_run_max > missed_run_bound(scn)) {
+        // The plant held one command longer than the lock-step lets a single command be late:
+        // the spacecraft flew open loop, whatever the flight software computed meanwhile.
+        char b[256];
+        std::snprintf(b, sizeof b,
+                      "MISSED_COMMANDS: %llu consecutive missed commands held the last command for %.3f s, "
+                      "more than lockstep.deadline_ms = %u ms allows (%llu periods of %u us)",
+                      static_cast<unsigned long long>(p.missed_run_max),
+                      static_cast<double>(p.missed_run_max) * scn.h_s(), scn.lockstep.deadline_ms,
+                      static_cast<unsigned long long>(missed_run_bound(scn)), scn.period_us);
+        why += (why.empty() ? "" : "; ") + std::string(b);
+    }
+    return why;
+}
+
+void plant_summary(const sim::Scenario &scn, const PlantSummary &p, host::Summary &s, const bool *same_streams)
 {
     s.add_int("plant_steps", static_cast<std::int64_t>(p.steps));
     s.add("plant_t_end_s", p.t_end_s, "%g");
     s.add_int("plant_missed", static_cast<std::int64_t>(p.missed));
+    s.add_int("plant_missed_run_max", static_cast<std::int64_t>(p.missed_run_max));
+    s.add_int("plant_missed_run_bound", static_cast<std::int64_t>(missed_run_bound(scn)));
     s.add_int("plant_retx", static_cast<std::int64_t>(p.retx));
     s.add_int("plant_late_cmds", static_cast<std::int64_t>(p.late_cmds));
     s.add_int("plant_dup_cmds", static_cast<std::int64_t>(p.dup_cmds));
@@ -96,6 +138,8 @@ void plant_summary(const PlantSummary &p, host::Summary &s)
     s.add_int("plant_crc_cmds", static_cast<std::int64_t>(p.crc_cmds));
     s.add_int("plant_nan_frames", static_cast<std::int64_t>(p.nan_frames));
     s.add_int("plant_spike_frames", static_cast<std::int64_t>(p.spike_frames));
+    s.add_int("fault_injected_frames", static_cast<std::int64_t>(p.faults.in));
+    s.add_int("fault_delivered", static_cast<std::int64_t>(p.faults.delivered));
     s.add_int("fault_dropped", static_cast<std::int64_t>(p.faults.dropped));
     s.add_int("fault_duplicated", static_cast<std::int64_t>(p.faults.duplicated));
     s.add_int("fault_reordered", static_cast<std::int64_t>(p.faults.reordered));
@@ -103,7 +147,21 @@ void plant_summary(const PlantSummary &p, host::Summary &s)
     s.add_int("fault_truncated", static_cast<std::int64_t>(p.faults.truncated));
     s.add_int("plant_diverged", p.diverged ? 1 : 0);
     s.add_str("plant_end", p.reason.empty() ? std::string("completed") : p.reason);
-    s.add_str("deterministic", p.deterministic() ? "yes" : "no (missed or re-sent frames)");
+    if (same_streams != nullptr) {
+        s.add_str("deterministic", *same_streams ? "yes" : "no (two flights of this run published different "
+                                                           "command or telemetry streams)");
+        s.add_str("deterministic_basis", "two flights compared (stream digests)");
+    } else if (p.sync) {
+        s.add_str("deterministic", "yes");
+        s.add_str("deterministic_basis", "memq lock-step: no clock in the loop, faults drawn from the seed "
+                                         "(not compared; --determinism-check flies the run twice)");
+    } else {
+        s.add_str("deterministic", p.deterministic() ? "yes" : "no (missed or re-sent frames)");
+        s.add_str("deterministic_basis", "udpm lock-step: re-sent and missed frames are wall-clock decisions");
+    }
+    const std::string lost = loss_of_control(scn, p);
+    s.add_int("loss_of_control", lost.empty() ? 0 : 1);
+    s.add_str("loss_of_control_reason", lost.empty() ? std::string("none") : lost);
 }
 
 void run_header(const sim::Scenario &scn, const std::string &fsw, const std::string &url, host::Summary &s)
@@ -142,11 +200,7 @@ bridge::SensorLimits run_limits(const sim::Scenario &scn)
     return be.sensor_limits();
 }
 
-namespace {
-
-// Loads a table image into a scratch flight software booted like the run's, through the upload
-// path, and throws naming the refusal.
-void check_table_image(const sim::Scenario &scn, const Upload &u)
+void check_upload(const sim::Scenario &scn, const Upload &u)
 {
     const host::MissionHost &mh = host::mission_host(scn.mission);
     std::unique_ptr<bridge::InProcessFswBackend> be = make_fixed_backend(scn);
@@ -168,27 +222,29 @@ void check_table_image(const sim::Scenario &scn, const Upload &u)
     if (ack.result != bridge::kTableAccepted) {
         char id[16];
         std::snprintf(id, sizeof id, "0x%04X", static_cast<unsigned>(table_id & 0xFFFF));
-        throw std::invalid_argument("table file '" + u.what + "' (table id " + id + ") refused by the " +
+        throw std::invalid_argument("table image '" + u.what + "' (table id " + id + ") refused by the " +
                                     std::string(mh.iface().name) + " flight loader: " +
                                     host::describe_reason(mh.iface(), static_cast<std::uint32_t>(ack.reason)) +
                                     "; the run is not started");
     }
 }
 
-}  // namespace
-
 std::vector<Upload> run_uploads(const sim::Scenario &scn, const std::vector<Upload> &extra)
 {
     std::vector<Upload> v;
     if (!scn.fsw.table_file.empty()) {
         v.push_back(upload_from_file(scn.fsw.table_file, 0.0));
-        check_table_image(scn, v.back());
+        check_upload(scn, v.back());
     }
     v.insert(v.end(), extra.begin(), extra.end());
     return v;
 }
 
-InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
+namespace {
+
+// One flight of the scenario on its own lcm_t. same_as: the metrics of an earlier flight of the
+// same run, whose streams this one's are compared with (the determinism check).
+InprocResult fly(const sim::Scenario &scn, const InprocOptions &opt, const CoreMetrics *same_as)
 {
     const host::MissionHost &mh = host::mission_host(scn.mission);
     std::vector<Upload> uploads = run_uploads(scn, opt.uploads);
@@ -251,9 +307,16 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
         res.mission = mt.mission_ptr();
         res.bridge = core.counters();
         res.log_events = tap ? tap->events() : 0u;
+        bool same = true;
+        if (same_as != nullptr) {
+            same = same_as->digest_cmd == res.core.digest_cmd && same_as->digest_tlm == res.core.digest_tlm &&
+                   same_as->cmd_n == res.core.cmd_n && same_as->tlm_n == res.core.tlm_n;
+            res.determinism_failed = !same;
+        }
+        res.loss_of_control = loss_of_control(scn, res.plant);
         run_header(scn, be.name(), opt.url, res.summary);
-        plant_summary(res.plant, res.summary);
-        mt.summary(res.summary);
+        plant_summary(scn, res.plant, res.summary, same_as != nullptr ? &same : nullptr);
+        mt.summary(res.summary, &res.bridge);
         res.summary.add("wall_s", res.wall_s, "%g");
         res.summary.add("steps_per_s", res.wall_s > 0.0 ? static_cast<double>(res.plant.steps) / res.wall_s : 0.0, "%g");
     } catch (...) {
@@ -262,6 +325,21 @@ InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
     }
     lcm_destroy(lcm);
     return res;
+}
+
+}  // namespace
+
+InprocResult run_inproc(const sim::Scenario &scn, const InprocOptions &opt)
+{
+    if (!opt.determinism_check) {
+        return fly(scn, opt, nullptr);
+    }
+    // The first flight only gives the streams to compare with: no log, no progress line.
+    InprocOptions quiet = opt;
+    quiet.log_path.clear();
+    quiet.progress = false;
+    const InprocResult first = fly(scn, quiet, nullptr);
+    return fly(scn, opt, &first.core);
 }
 
 }  // namespace sil

@@ -37,6 +37,9 @@ struct InprocOptions {
     std::string log_path;             // empty: no log
     std::vector<Upload> uploads;
     bool progress = false;            // progress line on stderr
+    // Fly the scenario twice and compare the command and telemetry streams (their digests): the
+    // summary's determinism verdict is then that comparison's.
+    bool determinism_check = false;
 };
 
 struct InprocResult {
@@ -47,6 +50,8 @@ struct InprocResult {
     std::uint64_t log_events = 0;
     double wall_s = 0.0;              // wall clock of the lock-step loop (benchmarks only)
     host::Summary summary;            // plant, bridge, executive and mission keys
+    std::string loss_of_control;      // empty: the run kept control (loss_of_control())
+    bool determinism_failed = false;  // determinism_check: the two flights' streams differ
     // The mission's metrics as its own type (host::ObsMetrics, host::ImpMetrics, ...).
     template <class T> const T &metrics() const { return dynamic_cast<const T &>(*mission); }
 };
@@ -70,10 +75,25 @@ bridge::SensorLimits run_limits(const sim::Scenario &scn);
 // allowed range), before any run starts.
 std::vector<Upload> run_uploads(const sim::Scenario &scn, const std::vector<Upload> &extra);
 
+// Loads an upload into a scratch flight software booted like the run's, through the upload
+// path; throws std::invalid_argument naming the file and the loader's reason when it is refused.
+void check_upload(const sim::Scenario &scn, const Upload &u);
+
+// The loss-of-control rule (README "Loss of control"): the reason when the run lost control —
+// the plant diverged (the mission's validity criterion, sim/<module>), or the plant held one
+// command through more consecutive missed commands than lockstep.deadline_ms covers
+// (missed_run_bound) — else empty.
+std::string loss_of_control(const sim::Scenario &scn, const PlantSummary &p);
+// The most consecutive missed commands a run may have: floor(deadline_ms / period).
+std::uint64_t missed_run_bound(const sim::Scenario &scn);
+
 // Publishes one table image in chunks on GNC_TBL_UP.
 void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us);
 
-void plant_summary(const PlantSummary &p, host::Summary &s);
+// The plant's keys, the determinism verdict (same_streams: the result of comparing two
+// flights' streams, null when not compared) and the loss-of-control verdict.
+void plant_summary(const sim::Scenario &scn, const PlantSummary &p, host::Summary &s,
+                   const bool *same_streams = nullptr);
 // The head of every summary: scenario, mission, table, flight software, transport.
 void run_header(const sim::Scenario &scn, const std::string &fsw, const std::string &url, host::Summary &s);
 

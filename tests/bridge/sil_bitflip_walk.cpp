@@ -48,7 +48,7 @@ bool check(const sil::InprocResult &r, const sil::InprocResult &clean, const std
     const auto &b = r.bridge;
     const bool refused = (b.crc_rej + b.malformed == 1) && (b.time_rej + b.jump_rej + b.range_rej == 0);
     const bool resent = (r.plant.retx == 1u) && (r.plant.missed == 0u);
-    const bool same = (r.core.cmd_digest == clean.core.cmd_digest) && (r.core.cmd_n == clean.core.cmd_n) &&
+    const bool same = (r.core.digest_cmd == clean.core.digest_cmd) && (r.core.cmd_n == clean.core.cmd_n) &&
                       !r.plant.diverged;
     if (!(refused && resent && same)) {
         ++w.bad;
@@ -57,7 +57,7 @@ bool check(const sil::InprocResult &r, const sil::InprocResult &clean, const std
                     what.c_str(), b.crc_rej, b.malformed, b.time_rej, b.jump_rej, b.range_rej,
                     static_cast<unsigned long long>(r.plant.retx), static_cast<unsigned long long>(r.plant.missed),
                     static_cast<unsigned long long>(r.core.cmd_n), static_cast<unsigned long long>(clean.core.cmd_n),
-                    (r.core.cmd_digest == clean.core.cmd_digest) ? "same" : "DIFFERENT",
+                    (r.core.digest_cmd == clean.core.digest_cmd) ? "same" : "DIFFERENT",
                     r.plant.diverged ? " DIVERGED" : "");
         return false;
     }
@@ -94,20 +94,20 @@ int random_flips(int argc, char **argv)
             const auto &b = r.bridge;
             const bool ok = fl > 0 && b.crc_rej + b.malformed == fl && static_cast<std::int64_t>(r.plant.retx) == fl &&
                             r.plant.missed == 0u && b.time_rej + b.jump_rej + b.range_rej == 0 && !r.plant.diverged &&
-                            r.core.cmd_digest == clean.core.cmd_digest && r.core.cmd_n == clean.core.cmd_n;
+                            r.core.digest_cmd == clean.core.digest_cmd && r.core.cmd_n == clean.core.cmd_n;
             if (!ok) {
                 ++bad;
                 std::printf("FAIL seed %lld: flips %lld crc_rej %d malformed %d retx %llu missed %llu digest %s\n", i,
                             static_cast<long long>(fl), b.crc_rej, b.malformed,
                             static_cast<unsigned long long>(r.plant.retx),
                             static_cast<unsigned long long>(r.plant.missed),
-                            r.core.cmd_digest == clean.core.cmd_digest ? "same" : "DIFFERENT");
+                            r.core.digest_cmd == clean.core.digest_cmd ? "same" : "DIFFERENT");
             }
         }
         std::printf("%s: %lld seeds at %lld ppm, %llu flips, %d runs failed; every passing run flew the clean "
                     "run's %llu commands (digest %016llx)\n",
                     argv[1], seeds, ppm, flips, bad, static_cast<unsigned long long>(clean.core.cmd_n),
-                    static_cast<unsigned long long>(clean.core.cmd_digest));
+                    static_cast<unsigned long long>(clean.core.digest_cmd));
         return bad == 0 ? 0 : 1;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "sil_bitflip_walk: %s\n", e.what());
@@ -183,7 +183,7 @@ int main(int argc, char **argv)
         }
         std::printf("%s: frame %lld, %u counts, %d runs, %d failed; clean run %llu commands, digest %016llx\n",
                     path.c_str(), frame, n_counts, w.runs, w.bad, static_cast<unsigned long long>(clean.core.cmd_n),
-                    static_cast<unsigned long long>(clean.core.cmd_digest));
+                    static_cast<unsigned long long>(clean.core.digest_cmd));
         return (w.bad == 0 && w.runs > 0) ? 0 : 1;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "sil_bitflip_walk: %s\n", e.what());

@@ -441,7 +441,7 @@ SIM_TEST(fault_truncated_and_bitflipped_frames)
     EXPECT_EQ_INT(static_cast<std::int64_t>(b.plant.retx), fl);
     EXPECT_EQ_INT(b.bridge.range_rej + b.bridge.time_rej + b.bridge.jump_rej, 0);
     EXPECT_EQ_INT(static_cast<std::int64_t>(b.plant.missed), 0);
-    EXPECT_TRUE(b.core.cmd_digest == clean.core.cmd_digest);
+    EXPECT_TRUE(b.core.digest_cmd == clean.core.digest_cmd);
     EXPECT_EQ_INT(static_cast<std::int64_t>(b.core.cmd_n), static_cast<std::int64_t>(clean.core.cmd_n));
     EXPECT_NEAR(obs(b).t_s, obs(clean).t_s, 0.0);                  // bit-identical flight
     EXPECT_NEAR(obs(b).k_hat_final, obs(clean).k_hat_final, 0.0);

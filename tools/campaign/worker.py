@@ -57,7 +57,10 @@ def run_one(c, i, sil):
         except subprocess.TimeoutExpired:
             rec.update(status="timeout", reason="no result within %g s" % c.timeout_s)
             return rec
-        if r.returncode != 0 or not os.path.exists(sj):
+        # Exit 3: flown, but control was lost (plant diverged, or too many consecutive missed
+        # commands; hil_host/sil/README.md): a failed run with its summary, not an error.
+        lost = r.returncode == 3 and os.path.exists(sj)
+        if (r.returncode != 0 and not lost) or not os.path.exists(sj):
             last = (r.stderr.strip().splitlines() or ["exit %d" % r.returncode])[-1]
             rec.update(status="error", reason=last[:300])
             return rec
@@ -70,6 +73,8 @@ def run_one(c, i, sil):
             v = s.get(k)
             rec.setdefault("m." + k, float(v) if isinstance(v, (int, float)) else float("nan"))
         ok, why = c.passed({k[2:]: v for k, v in rec.items() if k.startswith("m.")})
+        if lost:
+            ok, why = False, "loss of control: %s" % s.get("loss_of_control_reason", "?")
         rec.update(status="ok" if ok else "fail", passed=ok, reason=why)
         return rec
     except Exception as e:   # any problem becomes this run's record, never a lost run

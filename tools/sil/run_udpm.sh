@@ -11,7 +11,7 @@
 # run's live metrics from the plant process (C++: plant, executive, bridge and mission figures),
 # OUT_DIR/summary.txt (key = value) and OUT_DIR/summary.json (the same; `python -m tools.sil
 # report --summary` reads it); prints the plant's progress on stderr. Exit status: the plant's
-# (0 = run completed, DIVERGED included: that is a result), or 1 if a node failed.
+# (0 = run completed in control, 3 = loss of control: hil_host/sil/README.md), or 1 if a node failed.
 set -euo pipefail
 [ $# -ge 3 ] || { echo "usage: $0 SCENARIO OUT_DIR PORT [SIL_BIN]" >&2; exit 2; }
 scn=$1
