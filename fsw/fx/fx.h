@@ -118,7 +118,8 @@ uint64_t fx_udiv_rnd64(uint64_t num, uint64_t den);
 /*
  * Reciprocal for repeated division by one divisor: made with one 64/32 divide, then each
  * division is multiplies plus an exact integer fix-up, so results are correctly rounded.
- * 1/d = m * 2^(sh - 60) with d as an integer, |d| << sh in [2^30, 2^31), |m| in (2^29, 2^30].
+ * 1/d = m * 2^(sh - 60) with d as an integer, |d| << sh in [2^30, 2^31], |m| in [2^29, 2^30]
+ * (|d| << sh = 2^31 only at d = INT32_MIN, where m = -2^29; d = +-INT32_MAX also gives |m| = 2^29).
  */
 typedef struct {
     int32_t  d;    /* the divisor, in its own Q (integer LSBs) */
@@ -172,12 +173,17 @@ int64_t  fx_shl64_chk(int64_t v, uint32_t n, fx_status_t *st);
 void     fx_vadd(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st);
 void     fx_vsub(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st);
 
-/* Caller-owned workspace of fx_solve (no hidden state). */
+/* Caller-owned workspace of fx_solve (no hidden state). A and b are worked on as int64, each scaled
+   by a power of two so that its largest entry has 31 bits, plus 24 guard bits (fsw/fx/README.md). */
 typedef struct {
-    int32_t a[FX_SOLVE_NMAX * FX_SOLVE_NMAX];  /* eliminated matrix, qa */
-    int32_t b[FX_SOLVE_NMAX];                  /* eliminated right-hand side, qb */
-    fx_recip_t rec[FX_SOLVE_NMAX];             /* pivots (rec[k].d, qa) and their reciprocals */
+    int64_t a[FX_SOLVE_NMAX * FX_SOLVE_NMAX];  /* eliminated matrix U (upper triangle), q(qa + sa) */
+    int64_t b[FX_SOLVE_NMAX];                  /* eliminated right-hand side, q(qb + sb) */
+    fx_recip_t rec[FX_SOLVE_NMAX];             /* pivot k rounded to qa (rec[k].d) and its reciprocal */
+    int32_t pm[FX_SOLVE_NMAX];                 /* round(2^60 / P_k), P_k: the 31 leading bits of pivot k */
+    int32_t pe[FX_SOLVE_NMAX];                 /* |pivot k| (in units of q(qa + sa)) ~= P_k 2^pe[k] */
     uint8_t perm[FX_SOLVE_NMAX];               /* perm[k]: original row used at step k */
+    uint8_t sa;                                /* fraction bits of a[] beyond qa */
+    uint8_t sb;                                /* fraction bits of b[] beyond qb */
 } fx_solve_ws_t;
 
 /*
