@@ -188,11 +188,15 @@ typedef struct {
 
 /*
  * Solve A x = b (n <= FX_SOLVE_NMAX) by Gaussian elimination with partial pivoting; one
- * reciprocal per pivot, then multiplies (fx_recip_t). A in qa, b in qb, x in qx; qb <= qa + qx.
- * Headroom: partial pivoting bounds element growth by 2^(n-1), so A must leave n-1 spare
- * bits in qa; a violation saturates and is flagged. |pivot| < pivot_min (qa) -> SINGULAR and
- * x zeroed. Each x_i is correctly rounded for its triangular system; error bound (tested):
- * |x - x_exact| <= 2 n kappa_inf(A) LSB of qx.
+ * reciprocal (one divide) per pivot, then multiplies. A in qa, b in qb, x in qx; qb <= qa + qx.
+ * A and b are each scaled exactly by a power of two to 31 significant bits and carried in int64
+ * with 24 guard bits; the multipliers are exact to 2^-58 (a second term from the exact residual),
+ * and each x_i is correctly rounded for its triangular system from an exact 128-bit numerator.
+ * Headroom: partial pivoting bounds growth by 2^(n-1); an eliminated entry that leaves int32 in
+ * qa (A without n-1 spare bits) sets SAT_HI/SAT_LO (the solve itself stays exact). |pivot| <
+ * pivot_min (qa, exact pivot) or a pivot below 1/2 LSB of qa -> SINGULAR and x zeroed.
+ * Error bound (derived in fsw/fx/README.md, tested for any |x| against an exact reference):
+ * |x - x_exact|inf <= ((2^n - 1)/2 + 2^-10) kappa_inf(A) <= 2 n kappa_inf(A) LSB of qx.
  */
 void     fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                   uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
@@ -200,11 +204,12 @@ void     fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_
 /*
  * Fast solve for iterations that only need a step of small *relative* error (Newton steps):
  * the same arguments, workspace, argument checks, pivoting, SINGULAR rule and saturation flags
- * as fx_solve, and the same elimination bit for bit (ws->a, ws->b, ws->rec, ws->perm equal
- * fx_solve's). Only the back substitution differs: x_i = s_i / u_ii is taken from the pivot's
- * reciprocal with one product and one rounding (no correction step, not correctly rounded):
- * |x_i - s_i / u_ii| <= 1.5 2^-30 |s_i / u_ii| + 1/2 LSB. Error bound (tested):
- * |x - x_exact| <= 2 n kappa_inf(A) (1 + 2^-29 |x_exact|inf) LSB of qx, |x|inf in LSB.
+ * as fx_solve, and the same elimination bit for bit (ws->a, ws->b, ws->rec, ws->pm, ws->pe,
+ * ws->perm equal fx_solve's) and the same exact numerator s_i. Only the last step differs:
+ * x_i = s_i / u_ii is taken from the pivot's reciprocal with one product and one rounding (no
+ * residual fix-up, not correctly rounded): |x_i - s_i / u_ii| <= (1.5 2^-30 + 2^-61) |s_i / u_ii|
+ * + 1/2 LSB. Error bound (tested): |x - x_exact| <= 2 n kappa_inf(A) (1 + 2^-29 |x_exact|inf) LSB
+ * of qx, |x|inf in LSB.
  */
 void     fx_solve_fast(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                        uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);

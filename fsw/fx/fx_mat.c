@@ -169,7 +169,14 @@ typedef struct {
    conversion. */
 static int64_t u2s64(uint64_t u)
 {
-    return (u <= (uint64_t)INT64_MAX) ? (int64_t)u : (-(int64_t)(UINT64_MAX - u) - 1);
+    int64_t r;
+    if (u <= (uint64_t)INT64_MAX) {
+        r = (int64_t)u;
+    } else {
+        uint64_t c = UINT64_MAX - u;   /* < 2^63 */
+        r = -(int64_t)c - 1;
+    }
+    return r;
 }
 
 static uint64_t mag64(int64_t v)
@@ -251,9 +258,12 @@ static u128_t add128(u128_t a, u128_t b)
 static u128_t neg128(u128_t a)
 {
     u128_t r;
-    r.lo = (uint64_t)0 - a.lo;
-    r.hi = ((uint64_t)0 - a.hi) - ((a.lo != 0u) ? 1u : 0u);
-    return r;
+    u128_t one;
+    r.hi = ~a.hi;
+    r.lo = ~a.lo;
+    one.hi = 0u;
+    one.lo = 1u;
+    return add128(r, one);
 }
 
 /* Partial pivoting for column k: swap the row with the largest |w_ik| (lowest index on ties)
@@ -305,13 +315,19 @@ static void pivot_recip(fx_solve_ws_t *ws, uint32_t k, uint64_t up, uint32_t sa,
     if (e > 0) {
         pp = (int64_t)shr128_rnd(umul64x32(up, 1u), (uint32_t)e);
     } else {
-        pp = (int64_t)(up << (uint32_t)(-e));
+        uint64_t t = up << (uint32_t)(-e);
+        pp = (int64_t)t;
     }
     if (d_sat || (z > 1) || (z < -1)) {
-        m = P2_29_I64 * 3 - fx_shr_rnd64_i(pp, 1u, &ignore);
+        m = (P2_29_I64 * 3) - fx_shr_rnd64_i(pp, 1u, &ignore);
     } else {
         uint64_t md = (uint64_t)fx_uabs(ws->rec[k].m);
-        m = (z >= 0) ? (int64_t)(md << (uint32_t)z) : fx_shr_rnd64_i((int64_t)md, (uint32_t)(-z), &ignore);
+        if (z >= 0) {
+            uint64_t t = md << (uint32_t)z;
+            m = (int64_t)t;
+        } else {
+            m = fx_shr_rnd64_i((int64_t)md, (uint32_t)(-z), &ignore);
+        }
     }
     for (i = 0u; i < 6u; i++) {
         int64_t r = P2_60_I64 - (pp * m);   /* |r| <= 2^59 + 2^31: P m <= 1.5 2^60 */
@@ -351,15 +367,16 @@ static void eliminate(fx_solve_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st
     const int64_t *ak = &ws->a[(size_t)k * n];
     int64_t p = ak[k];
     int64_t m = (p < 0) ? -(int64_t)ws->pm[k] : (int64_t)ws->pm[k];
-    int32_t e = ws->pe[k];
+    uint32_t sh1 = (uint32_t)ws->pe[k] + 30u;      /* pe in [-7, 27]: unsigned wrap gives 30 + pe */
+    uint32_t sh2 = sh1 + 2u;
     uint32_t qsh = (uint32_t)ws->sa + 31u;          /* |w| >= 2^qsh: outside int32 in qa */
     int64_t lim = (qsh <= 62u) ? fx_pow2_64(qsh, st) : INT64_MAX;
     for (i = k + 1u; i < n; i++) {
         int64_t *ai = &ws->a[(size_t)i * n];
         /* |w_ik| <= |p| < 2^59, pm <= 2^30: l1 <= 2^30 + 2 */
-        int64_t l1 = mul_shr(ai[k], m, (uint32_t)(30 + e));
+        int64_t l1 = mul_shr(ai[k], m, sh1);
         uint64_t nu = ((uint64_t)ai[k] << 30) - ((uint64_t)l1 * (uint64_t)p);
-        int64_t l2 = mul_shr(u2s64(nu), m, (uint32_t)(32 + e));
+        int64_t l2 = mul_shr(u2s64(nu), m, sh2);
         ai[k] = 0;
         for (j = k + 1u; j < n; j++) {
             int64_t v = ai[j] - mul_shr(ak[j], l1, 30u) - mul_shr(ak[j], l2, 58u);
@@ -379,12 +396,63 @@ static uint32_t norm_shift(uint32_t mx)
     return (l >= 31u) ? 0u : (31u - l);
 }
 
+/* Exact scalings W = A 2^sa, C = b 2^sb with |W|, |C| <= 2^(31 + SOLVE_G). */
+static void scale_inputs(fx_solve_ws_t *ws, const int32_t *a, const int32_t *b, uint32_t n, fx_status_t *st)
+{
+    uint32_t mxa = 0u;
+    uint32_t mxb = 0u;
+    int64_t fa;
+    int64_t fb;
+    uint32_t i;
+    for (i = 0u; i < (n * n); i++) {
+        uint32_t v = fx_uabs(a[i]);
+        mxa = (v > mxa) ? v : mxa;
+    }
+    for (i = 0u; i < n; i++) {
+        uint32_t v = fx_uabs(b[i]);
+        mxb = (v > mxb) ? v : mxb;
+    }
+    ws->sa = (uint8_t)(norm_shift(mxa) + SOLVE_G);
+    ws->sb = (uint8_t)(norm_shift(mxb) + SOLVE_G);
+    fa = fx_pow2_64(ws->sa, st);
+    fb = fx_pow2_64(ws->sb, st);
+    for (i = 0u; i < (n * n); i++) {
+        ws->a[i] = (int64_t)a[i] * fa;
+    }
+    for (i = 0u; i < n; i++) {
+        ws->b[i] = (int64_t)b[i] * fb;
+    }
+}
+
+/* Step k: pivot, SINGULAR test, reciprocals, elimination. False on SINGULAR. */
+static bool pivot_step(fx_solve_ws_t *ws, uint32_t n, uint32_t k, int32_t pivot_min, fx_status_t *st)
+{
+    uint64_t best = pivot_rows(ws, n, k);
+    fx_status_t ds = 0u;
+    bool ok = true;
+    /* pivot in qa, rounded: the value callers see in rec[k].d */
+    int32_t d = fx_rshift_sat_i(ws->a[(k * n) + k], ws->sa, &ds);
+    ws->rec[k].d = d;
+    ws->rec[k].m = 0;
+    ws->rec[k].sh = 0u;
+    /* |pivot| < pivot_min in qa, tested on the exact pivot: floor(|w| / 2^sa) < pivot_min */
+    if ((d == 0) || ((pivot_min > 0) && ((best >> ws->sa) < (uint64_t)(uint32_t)pivot_min))) {
+        *st |= FX_ST_SINGULAR;
+        ok = false;
+    } else {
+        *st |= ds;
+        fx_recip_init(&ws->rec[k], d, st);
+        pivot_recip(ws, k, best, ws->sa, ds != 0u);
+        eliminate(ws, n, k, st);
+    }
+    return ok;
+}
+
 /* fx_solve's and fx_solve_fast's shared part: argument checks, the normalised int64 copy into
    ws, pivoting and elimination; false (and x zeroed) on ARG or SINGULAR. */
 static bool factor(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                    uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
-    uint32_t i;
     uint32_t k;
     bool fail = false;
     if ((n < 1u) || (n > FX_SOLVE_NMAX) || (qa > FX_Q_MAX) || (qb > FX_Q_MAX) || (qx > FX_Q_MAX) ||
@@ -392,50 +460,13 @@ static bool factor(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32
         *st |= FX_ST_ARG;
         fail = true;
     } else {
-        uint32_t mxa = 0u;
-        uint32_t mxb = 0u;
-        int64_t fa;
-        int64_t fb;
-        for (i = 0u; i < (n * n); i++) {
-            uint32_t v = fx_uabs(a[i]);
-            mxa = (v > mxa) ? v : mxa;
-        }
-        for (i = 0u; i < n; i++) {
-            uint32_t v = fx_uabs(b[i]);
-            mxb = (v > mxb) ? v : mxb;
-        }
-        /* exact scalings: W = A 2^sa, C = b 2^sb, |W|, |C| <= 2^(31 + SOLVE_G) */
-        ws->sa = (uint8_t)(norm_shift(mxa) + SOLVE_G);
-        ws->sb = (uint8_t)(norm_shift(mxb) + SOLVE_G);
-        fa = fx_pow2_64(ws->sa, st);
-        fb = fx_pow2_64(ws->sb, st);
-        for (i = 0u; i < (n * n); i++) {
-            ws->a[i] = (int64_t)a[i] * fa;
-        }
-        for (i = 0u; i < n; i++) {
-            ws->b[i] = (int64_t)b[i] * fb;
-        }
+        scale_inputs(ws, a, b, n, st);
     }
     for (k = 0u; (!fail) && (k < n); k++) {
-        uint64_t best = pivot_rows(ws, n, k);
-        fx_status_t ds = 0u;
-        /* pivot in qa, rounded: the value callers see in rec[k].d */
-        int32_t d = fx_rshift_sat_i(ws->a[(k * n) + k], ws->sa, &ds);
-        ws->rec[k].d = d;
-        ws->rec[k].m = 0;
-        ws->rec[k].sh = 0u;
-        /* |pivot| < pivot_min in qa, tested on the exact pivot: floor(|w| / 2^sa) < pivot_min */
-        if ((d == 0) || ((pivot_min > 0) && ((best >> ws->sa) < (uint64_t)(uint32_t)pivot_min))) {
-            *st |= FX_ST_SINGULAR;
-            fail = true;
-        } else {
-            *st |= ds;
-            fx_recip_init(&ws->rec[k], d, st);
-            pivot_recip(ws, k, best, ws->sa, ds != 0u);
-            eliminate(ws, n, k, st);
-        }
+        fail = !pivot_step(ws, n, k, pivot_min, st);
     }
     if (fail) {
+        uint32_t i;
         for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
             x[i] = 0;
         }
@@ -443,96 +474,101 @@ static bool factor(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32
     return !fail;
 }
 
-/*
- * x_i = (c_i 2^g - sum_{j>i} u_ij x_j) / u_ii, bottom up: the numerator S exactly in 128 bits
- * (g = qa + qx - qb + sa - sb is the step from C's scale to W x's; g < 0 rounds c_i 2^g, an error
- * of 1/2 unit of W x), then x0 ~= S / u_ii from the reciprocal (relative error <= 1.5 2^-30 +
- * 2^-61: pm, P, S's 62 leading bits). fast: x_i = x0. Otherwise the exact residual
- * R = S - u_ii x0 (|R| <= 4 |u_ii| < 2^61, so its value mod 2^64 is the value) settles the
- * rounding: X = round(S / u) half away from zero iff -|u| <= 2 (|S| - |u| X) < |u|.
- */
+/* s_i = c_i 2^g - sum_{j>i} u_ij x_j exactly (two's complement, 128 bits). g = qa + qx - qb +
+   sa - sb in [-31, 62] is the step from C's scale to W x's; g < 0 rounds c_i 2^g, an error of
+   1/2 unit of W x. |c| < 2^59, |u_ij x_j| < 2^89: far inside 128 bits. */
+static u128_t numerator(const fx_solve_ws_t *ws, uint32_t n, uint32_t ii, int32_t g, const int32_t *x)
+{
+    const int64_t *ai = &ws->a[(size_t)ii * n];
+    fx_status_t ignore = 0u;   /* -g <= 31: in range */
+    u128_t s;
+    uint32_t j;
+    if (g >= 0) {
+        uint32_t ug = (uint32_t)g;
+        s = s128_from64(ws->b[ii]);
+        if (ug > 0u) {
+            s.hi = (s.hi << ug) | (s.lo >> (64u - ug));
+            s.lo <<= ug;
+        }
+    } else {
+        s = s128_from64(fx_shr_rnd64_i(ws->b[ii], (uint32_t)(-g), &ignore));
+    }
+    for (j = ii + 1u; j < n; j++) {
+        u128_t pr = umul64x32(mag64(ai[j]), (uint64_t)fx_uabs(x[j]));
+        bool pneg = (ai[j] < 0) != (x[j] < 0);
+        s = add128(s, pneg ? pr : neg128(pr));
+    }
+    return s;
+}
+
+/* Correct rounding from x0 (|x0 - ms / ud| < 7): R = ms - ud x0 (|R| < 2^61, so its value mod
+   2^64 is the value), then X = round(ms / ud) half away from zero iff -ud <= 2 (ms - ud X) < ud. */
+static uint64_t fix_quot(uint64_t ms_lo, uint64_t ud, uint64_t x0)
+{
+    int64_t r = u2s64(ms_lo - (ud * x0));
+    int64_t sd = (int64_t)ud;
+    uint64_t x = x0;
+    uint32_t it;
+    for (it = 0u; it < 8u; it++) {
+        if ((2 * r) >= sd) {
+            x++;
+            r -= sd;
+        } else if ((2 * r) < -sd) {
+            x--;
+            r += sd;
+        } else {
+            break;
+        }
+    }
+    return x;
+}
+
+/* |s| / |u| for pivot ii: 0 below 1/2, UINT64_MAX at 2^32 or more (from bit lengths), else x0
+   from the 62 leading bits of |s| and pm (relative error <= 1.5 2^-30 + 2^-61), corrected to the
+   rounded quotient unless fast. */
+static uint64_t quot_mag(const fx_solve_ws_t *ws, uint32_t ii, u128_t ms, uint64_t ud, bool fast)
+{
+    uint32_t bd = bitlen64(ud);
+    uint32_t bs = (ms.hi != 0u) ? (64u + bitlen64(ms.hi)) : bitlen64(ms.lo);
+    uint64_t q;
+    if ((bs + 1u) < bd) {
+        q = 0u;                                      /* |s / u| < 2^(bs - bd + 1) <= 1/2 */
+    } else if (bs > (bd + 32u)) {
+        q = UINT64_MAX;                              /* |s / u| >= 2^(bs - 1 - bd) >= 2^32 */
+    } else {
+        /* sn = |s| 2^(62 - bs) in [2^61, 2^62]; |s| / |u| ~= sn 2^(bs - 62) pm 2^(-60 - pe):
+           shift 122 + pe - bs, in [59, 93] since pe = bd - 31 and bd - 1 <= bs <= bd + 32 */
+        uint64_t sn = (bs > 62u) ? shr128_rnd(ms, bs - 62u) : (ms.lo << (62u - bs));
+        uint32_t shq = (122u + (uint32_t)ws->pe[ii]) - bs;
+        q = shr128_rnd(umul64x32(sn, (uint64_t)(uint32_t)ws->pm[ii]), shq);
+        if ((!fast) && (q <= ((uint64_t)1 << 32))) {
+            q = fix_quot(ms.lo, ud, q);               /* beyond 2^32: saturated either way */
+        }
+    }
+    return q;
+}
+
+/* x_i = s_i / u_ii bottom up, saturated to int32 with SAT_HI / SAT_LO. */
 static void back_substitute(const fx_solve_ws_t *ws, uint32_t n, uint32_t qa, uint32_t qb, uint32_t qx,
                             bool fast, int32_t *x, fx_status_t *st)
 {
     uint32_t k;
-    int32_t g = ((int32_t)qa + (int32_t)qx) - (int32_t)qb + (int32_t)ws->sa - (int32_t)ws->sb;  /* [-31, 61] */
-    fx_status_t ignore = 0u;   /* shifts below are in range */
+    int32_t g = ((int32_t)qa + (int32_t)qx) - (int32_t)qb + (int32_t)ws->sa - (int32_t)ws->sb;
     for (k = 0u; k < n; k++) {
         uint32_t ii = n - 1u - k;
-        const int64_t *ai = &ws->a[(size_t)ii * n];
-        uint64_t ud = mag64(ai[ii]);
-        uint32_t bd = bitlen64(ud);
-        u128_t s;
-        u128_t ms;
-        uint32_t bs;
-        bool sneg;
-        bool neg;
-        int64_t xr = 0;
-        uint32_t j;
-        if (g >= 0) {
-            /* c 2^g: |c| < 2^59, g <= 61 */
-            u128_t c = s128_from64(ws->b[ii]);
-            if (g > 0) {
-                c.hi = (c.hi << (uint32_t)g) | (c.lo >> (64u - (uint32_t)g));
-                c.lo <<= (uint32_t)g;
-            }
-            s = c;
-        } else {
-            s = s128_from64(fx_shr_rnd64_i(ws->b[ii], (uint32_t)(-g), &ignore));
-        }
-        for (j = ii + 1u; j < n; j++) {
-            /* |u_ij x_j| < 2^58 2^31: the sum stays far inside 128 bits */
-            u128_t pr = umul64x32(mag64(ai[j]), (uint64_t)fx_uabs(x[j]));
-            bool pneg = (ai[j] < 0) != (x[j] < 0);
-            s = add128(s, pneg ? pr : neg128(pr));
-        }
-        sneg = (s.hi >> 63) != 0u;
-        ms = sneg ? neg128(s) : s;
-        neg = sneg != (ai[ii] < 0);
-        bs = (ms.hi != 0u) ? (64u + bitlen64(ms.hi)) : bitlen64(ms.lo);
-        if ((bs + 1u) < bd) {
-            xr = 0;                                  /* |S / u| < 2^(bs - bd + 1) <= 1/2 */
-        } else if (bs > (bd + 32u)) {
-            xr = INT64_MAX;                          /* |S / u| >= 2^(bs - 1 - bd) >= 2^32 */
-        } else {
-            /* S to 62 leading bits: sn = |S| 2^-t, sn in [2^61, 2^62] */
-            uint64_t sn;
-            uint32_t shq;
-            uint64_t x0;
-            if (bs > 62u) {
-                sn = shr128_rnd(ms, bs - 62u);
-            } else {
-                sn = ms.lo << (62u - bs);
-            }
-            /* |S| / |u| ~= sn 2^(bs - 62) pm 2^(-60 - pe): shift 122 + pe - bs in [59, 93] */
-            shq = (uint32_t)((122 + ws->pe[ii]) - (int32_t)bs);
-            x0 = shr128_rnd(umul64x32(sn, (uint64_t)(uint32_t)ws->pm[ii]), shq);
-            if (fast || (x0 > ((uint64_t)1 << 32))) {
-                xr = (int64_t)x0;                    /* beyond 2^32 + 8: saturated either way */
-            } else {
-                /* R = |S| - |u| x0: |x0 - |S/u|| <= 2^32 1.5 2^-30 + 1/2 < 7 */
-                int64_t r = u2s64(ms.lo - (ud * x0));
-                int64_t sd = (int64_t)ud;
-                uint32_t it;
-                xr = (int64_t)x0;
-                for (it = 0u; it < 8u; it++) {
-                    if ((2 * r) >= sd) {
-                        xr++;
-                        r -= sd;
-                    } else if ((2 * r) < -sd) {
-                        xr--;
-                        r += sd;
-                    } else {
-                        break;
-                    }
-                }
-            }
-        }
-        if (xr > (neg ? ((int64_t)INT32_MAX + 1) : (int64_t)INT32_MAX)) {
+        int64_t u = ws->a[((size_t)ii * n) + ii];
+        u128_t s = numerator(ws, n, ii, g, x);
+        bool sneg = (s.hi >> 63) != 0u;
+        bool uneg = u < 0;
+        bool neg = sneg != uneg;
+        uint64_t q = quot_mag(ws, ii, sneg ? neg128(s) : s, mag64(u), fast);
+        uint64_t lim = neg ? ((uint64_t)INT32_MAX + 1u) : (uint64_t)INT32_MAX;
+        if (q > lim) {
             *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
             x[ii] = neg ? INT32_MIN : INT32_MAX;
         } else {
-            x[ii] = neg ? (int32_t)(-xr) : (int32_t)xr;
+            int64_t v = (int64_t)q;
+            x[ii] = (int32_t)(neg ? -v : v);
         }
     }
 }
