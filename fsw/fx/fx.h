@@ -118,7 +118,8 @@ uint64_t fx_udiv_rnd64(uint64_t num, uint64_t den);
 /*
  * Reciprocal for repeated division by one divisor: made with one 64/32 divide, then each
  * division is multiplies plus an exact integer fix-up, so results are correctly rounded.
- * 1/d = m * 2^(sh - 60) with d as an integer, |d| << sh in [2^30, 2^31), |m| in (2^29, 2^30].
+ * 1/d = m * 2^(sh - 60) with d as an integer, |d| << sh in [2^30, 2^31], |m| in [2^29, 2^30]
+ * (|d| << sh = 2^31 only at d = INT32_MIN, where m = -2^29; d = +-INT32_MAX also gives |m| = 2^29).
  */
 typedef struct {
     int32_t  d;    /* the divisor, in its own Q (integer LSBs) */
@@ -172,21 +173,30 @@ int64_t  fx_shl64_chk(int64_t v, uint32_t n, fx_status_t *st);
 void     fx_vadd(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st);
 void     fx_vsub(const int32_t *a, const int32_t *b, uint32_t n, int32_t *y, fx_status_t *st);
 
-/* Caller-owned workspace of fx_solve (no hidden state). */
+/* Caller-owned workspace of fx_solve (no hidden state). A and b are worked on as int64, each scaled
+   by a power of two so that its largest entry has 31 bits, plus 24 guard bits (fsw/fx/README.md). */
 typedef struct {
-    int32_t a[FX_SOLVE_NMAX * FX_SOLVE_NMAX];  /* eliminated matrix, qa */
-    int32_t b[FX_SOLVE_NMAX];                  /* eliminated right-hand side, qb */
-    fx_recip_t rec[FX_SOLVE_NMAX];             /* pivots (rec[k].d, qa) and their reciprocals */
+    int64_t a[FX_SOLVE_NMAX * FX_SOLVE_NMAX];  /* eliminated matrix U (upper triangle), q(qa + sa) */
+    int64_t b[FX_SOLVE_NMAX];                  /* eliminated right-hand side, q(qb + sb) */
+    fx_recip_t rec[FX_SOLVE_NMAX];             /* pivot k rounded to qa (rec[k].d) and its reciprocal */
+    int32_t pm[FX_SOLVE_NMAX];                 /* round(2^60 / P_k), P_k: the 31 leading bits of pivot k */
+    int32_t pe[FX_SOLVE_NMAX];                 /* |pivot k| (in units of q(qa + sa)) ~= P_k 2^pe[k] */
     uint8_t perm[FX_SOLVE_NMAX];               /* perm[k]: original row used at step k */
+    uint8_t sa;                                /* fraction bits of a[] beyond qa */
+    uint8_t sb;                                /* fraction bits of b[] beyond qb */
 } fx_solve_ws_t;
 
 /*
  * Solve A x = b (n <= FX_SOLVE_NMAX) by Gaussian elimination with partial pivoting; one
- * reciprocal per pivot, then multiplies (fx_recip_t). A in qa, b in qb, x in qx; qb <= qa + qx.
- * Headroom: partial pivoting bounds element growth by 2^(n-1), so A must leave n-1 spare
- * bits in qa; a violation saturates and is flagged. |pivot| < pivot_min (qa) -> SINGULAR and
- * x zeroed. Each x_i is correctly rounded for its triangular system; error bound (tested):
- * |x - x_exact| <= 2 n kappa_inf(A) LSB of qx.
+ * reciprocal (one divide) per pivot, then multiplies. A in qa, b in qb, x in qx; qb <= qa + qx.
+ * A and b are each scaled exactly by a power of two to 31 significant bits and carried in int64
+ * with 24 guard bits; the multipliers are exact to 2^-58 (a second term from the exact residual),
+ * and each x_i is correctly rounded for its triangular system from an exact 128-bit numerator.
+ * Headroom: partial pivoting bounds growth by 2^(n-1); an eliminated entry that leaves int32 in
+ * qa (A without n-1 spare bits) sets SAT_HI/SAT_LO (the solve itself stays exact). |pivot| <
+ * pivot_min (qa, exact pivot) or a pivot below 1/2 LSB of qa -> SINGULAR and x zeroed.
+ * Error bound (derived in fsw/fx/README.md, tested for any |x| against an exact reference):
+ * |x - x_exact|inf <= ((2^n - 1)/2 + 2^-10) kappa_inf(A) <= 2 n kappa_inf(A) LSB of qx.
  */
 void     fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                   uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
@@ -194,11 +204,12 @@ void     fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_
 /*
  * Fast solve for iterations that only need a step of small *relative* error (Newton steps):
  * the same arguments, workspace, argument checks, pivoting, SINGULAR rule and saturation flags
- * as fx_solve, and the same elimination bit for bit (ws->a, ws->b, ws->rec, ws->perm equal
- * fx_solve's). Only the back substitution differs: x_i = s_i / u_ii is taken from the pivot's
- * reciprocal with one product and one rounding (no correction step, not correctly rounded):
- * |x_i - s_i / u_ii| <= 1.5 2^-30 |s_i / u_ii| + 1/2 LSB. Error bound (tested):
- * |x - x_exact| <= 2 n kappa_inf(A) (1 + 2^-29 |x_exact|inf) LSB of qx, |x|inf in LSB.
+ * as fx_solve, and the same elimination bit for bit (ws->a, ws->b, ws->rec, ws->pm, ws->pe,
+ * ws->perm equal fx_solve's) and the same exact numerator s_i. Only the last step differs:
+ * x_i = s_i / u_ii is taken from the pivot's reciprocal with one product and one rounding (no
+ * residual fix-up, not correctly rounded): |x_i - s_i / u_ii| <= (1.5 2^-30 + 2^-61) |s_i / u_ii|
+ * + 1/2 LSB. Error bound (tested): |x - x_exact| <= 2 n kappa_inf(A) (1 + 2^-29 |x_exact|inf) LSB
+ * of qx, |x|inf in LSB.
  */
 void     fx_solve_fast(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                        uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);

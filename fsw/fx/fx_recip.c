@@ -26,12 +26,14 @@ void fx_recip_init(fx_recip_t *r, int32_t d, fx_status_t *st)
         uint32_t s = 0u;
         uint32_t i;
         uint64_t rec;
-        /* Bounded normalisation: at most 30 doublings bring m into [2^30, 2^31). */
+        /* Bounded normalisation: at most 30 doublings bring m into [2^30, 2^31]; only
+           d = INT32_MIN gives 2^31 (no doubling). */
         for (i = 0u; (i < 31u) && (m < ((uint32_t)1 << 30)); i++) {
             m <<= 1;
             s++;
         }
-        /* 2^60 / m in (2^29, 2^30], correctly rounded: relative error <= 2^-30. */
+        /* 2^60 / m in [2^29, 2^30], correctly rounded: relative error <= 2^-30. The low end is
+           reached at |d| = 2^31 (exactly 2^29) and at |d| = 2^31 - 1 (2^29 + 0.25, rounded down). */
         rec = fx_udiv_rnd64((uint64_t)1 << 60, (uint64_t)m);
         r->m = (d < 0) ? -(int32_t)rec : (int32_t)rec;
         r->sh = s;
@@ -56,7 +58,7 @@ static bool approx_quot(int64_t a, const fx_recip_t *r, int64_t *q)
         e++;
     }
     t = 60 - (int32_t)r->sh - (int32_t)e;
-    /* With e > 0, |a_hi| >= 2^30 and |m| > 2^29, so |q| >= 2^(59 - t): t < 19 means > 2^40. */
+    /* With e > 0, |a_hi| >= 2^30 and |m| >= 2^29, so |q| >= 2^(59 - t): t < 19 means > 2^40. */
     if ((e > 0u) && (t < 19)) {
         ok = false;
         *q = 0;
@@ -108,8 +110,16 @@ static bool quot_nonzero(int64_t a, const fx_recip_t *r, uint32_t k, int64_t *x,
 {
     uint64_t ua = (a < 0) ? ((uint64_t)0 - (uint64_t)a) : (uint64_t)a;
     bool ok = false;
-    /* |a| 2^k > 2^62 with |d| <= 2^31 means |quotient| > 2^31: saturated either way. */
-    if ((k == 0u) || (ua <= ((uint64_t)1 << (62u - k)))) {
+    /* |a| 2^k > 2^62 means |quotient| > 2^31 (|d| <= 2^31), which saturates, except for
+       d = INT32_MIN, a > 0 and |a| 2^k in (2^62, 2^62 + 2^30): -|a| 2^(k - 31) in (-2^31 - 1/2, -2^31)
+       rounds to INT32_MIN. k >= 31 has no such a (|a| 2^(k - 31) is then an integer > 2^31). */
+    if ((k > 0u) && (ua > ((uint64_t)1 << (62u - k)))) {
+        if ((r->d == INT32_MIN) && (a > 0) && (k <= 30u) &&
+            ((ua - ((uint64_t)1 << (62u - k))) < ((uint64_t)1 << (30u - k)))) {
+            *x = (int64_t)INT32_MIN;
+            ok = true;
+        }
+    } else {
         int64_t ak = a * fx_pow2_64(k, st);             /* exact: |a 2^k| <= 2^62 */
         int64_t x0 = 0;
         if (approx_quot(ak, r, &x0) && (x0 < RECIP_X_LIMIT) && (x0 > -RECIP_X_LIMIT)) {

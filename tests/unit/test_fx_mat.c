@@ -455,12 +455,130 @@ UT_TEST(solve_fast_symmetry)
     }
 }
 
+/*
+ * Audit reproducer (fx_solve broke its bound with no flag raised): |x| in LSB of qx far above
+ * max|a_ij| in LSB of qa, where the old elimination's rounding of each a_ij to one LSB of qa
+ * cost kappa |x| / |A| LSB. The old code returned x[3] = -344437253 (34.3 LSB off, bound 17.3).
+ * Exact values with Python fractions.Fraction (Gaussian elimination on the integers, b scaled
+ * by 2^(qa + qx - qb) = 2^31):
+ *   x * 1000 = [844307884606.47, -31838663931.48, -1014009875859.61, -344437218739.71]
+ *   kappa_inf(A) = |A|inf |A^-1|inf = 2.15689530168..., 2 n kappa = 17.2551630... LSB
+ * fx_solve: |x_i - x_exact,i| <= 2 n kappa; 1000 |x - x_exact| <= 17255 is checked against the
+ * rounded 1000 x_exact (itself within 0.5), hence the 17254.
+ * fx_solve_fast: 2 n kappa (1 + 2^-29 |x|inf) = 17.2552 (1 + 1014009876 / 2^29) = 49.845 LSB.
+ */
+UT_TEST(solve_bound_large_x_reproducer)
+{
+    static const int32_t a[16] = {-101006476, 4848859, -1500227, -15490018, -9971092, 89364658, -15706927, 727701,
+                                  -7814389, 3797064, -73312023, 11573623, -2333061, -2548668, -12415896, 95501512};
+    static const int32_t b[4] = {-36590901, 2054688, 29631930, -10334472};
+    static const int64_t x1000[4] = {INT64_C(844307884606), INT64_C(-31838663931), INT64_C(-1014009875860),
+                                     INT64_C(-344437218740)};
+    fx_solve_ws_t ws;
+    int32_t x[4];
+    fx_status_t st = 0u;
+    uint32_t i;
+    fx_solve(&ws, a, 28u, b, 27u, 4u, x, 30u, 1, &st);
+    UT_UEQ(st, 0u);
+    for (i = 0u; i < 4u; i++) {
+        UT_CHECK_LE(abs64(((int64_t)x[i] * 1000) - x1000[i]), 17254);
+    }
+    fx_solve_fast(&ws, a, 28u, b, 27u, 4u, x, 30u, 1, &st);
+    UT_UEQ(st, 0u);
+    for (i = 0u; i < 4u; i++) {
+        UT_CHECK_LE(abs64(((int64_t)x[i] * 1000) - x1000[i]), 49844);
+    }
+}
+
+/*
+ * fx_recip_div at d = INT32_MIN with |a| 2^k just above 2^62: the quotient -|a| 2^(k - 31) lies in
+ * (-2^31 - 1/2, -2^31), which rounds to INT32_MIN, a representable result (the old code flagged
+ * SAT_LO). Exact values (Python Fraction(a * 2**k, -2**31), rounded half away from zero):
+ *   a = 2^61 + 1,            k = 1:  -2147483648.000000000931 -> -2147483648, no flag
+ *   a = 2^61 + 2^29 - 1,     k = 1:  -2147483648.49999999907  -> -2147483648, no flag
+ *   a = 2^61 + 2^29,         k = 1:  -2147483648.5 (tie)      -> -2147483649: SAT_LO, INT32_MIN
+ *   a = 2^32 + 1,            k = 30: -2147483648.5 (tie)      -> SAT_LO
+ *   a = 2^32,                k = 30: -2147483648 exactly      -> no flag (|a| 2^k = 2^62)
+ *   a = 2^31 + 1,            k = 31: -2147483649 exactly      -> SAT_LO
+ *   a = -(2^61 + 1),         k = 1:  +2147483648.000000000931 -> SAT_HI, INT32_MAX
+ */
+UT_TEST(recip_div_int32_min_edge)
+{
+    fx_recip_t r;
+    fx_status_t st = 0u;
+    fx_recip_init(&r, INT32_MIN, &st);
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_recip_div(INT64_C(2305843009213693953), &r, 1u, &st), INT32_MIN);   /* 2^61 + 1 */
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_recip_div(INT64_C(2305843009750564863), &r, 1u, &st), INT32_MIN);   /* 2^61 + 2^29 - 1 */
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_recip_div(INT64_C(4294967296), &r, 30u, &st), INT32_MIN);           /* 2^32 */
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_recip_div(INT64_C(2305843009750564864), &r, 1u, &st), INT32_MIN);   /* 2^61 + 2^29: tie */
+    UT_UEQ(st, FX_ST_SAT_LO);
+    st = 0u;
+    UT_EQ(fx_recip_div(INT64_C(4294967297), &r, 30u, &st), INT32_MIN);           /* 2^32 + 1: tie */
+    UT_UEQ(st, FX_ST_SAT_LO);
+    st = 0u;
+    UT_EQ(fx_recip_div(INT64_C(2147483649), &r, 31u, &st), INT32_MIN);           /* 2^31 + 1 */
+    UT_UEQ(st, FX_ST_SAT_LO);
+    st = 0u;
+    UT_EQ(fx_recip_div(INT64_C(-2305843009213693953), &r, 1u, &st), INT32_MAX);  /* -(2^61 + 1) */
+    UT_UEQ(st, FX_ST_SAT_HI);
+}
+
+/*
+ * fx_recip_t ranges (fx.h): |d| << sh in [2^30, 2^31] and |m| in [2^29, 2^30]. The ends are
+ * reached at d = INT32_MIN (|d| = 2^31, sh = 0, m = -2^60 / 2^31 = -2^29 exactly) and at
+ * d = +-INT32_MAX (m = round(2^60 / (2^31 - 1)) = round(2^29 + 0.25) = 2^29), and |m| = 2^30
+ * at |d| = 2^k (|d| << sh = 2^30).
+ */
+UT_TEST(recip_ranges)
+{
+    static const int32_t dv[] = {INT32_MIN, INT32_MAX, -INT32_MAX, 1, -1, 3, 1073741824, 1073741825, -1073741823,
+                                 46341, 2147483646};
+    uint64_t seed = 5u;
+    uint32_t it;
+    fx_recip_t r;
+    fx_status_t st = 0u;
+    fx_recip_init(&r, INT32_MIN, &st);
+    UT_EQ(r.m, -536870912);
+    UT_UEQ(r.sh, 0u);
+    fx_recip_init(&r, INT32_MAX, &st);
+    UT_EQ(r.m, 536870912);
+    UT_UEQ(r.sh, 0u);
+    fx_recip_init(&r, -INT32_MAX, &st);
+    UT_EQ(r.m, -536870912);
+    fx_recip_init(&r, -4, &st);
+    UT_EQ(r.m, -1073741824);
+    UT_UEQ(r.sh, 28u);
+    UT_UEQ(st, 0u);
+    for (it = 0u; it < 20000u; it++) {
+        int32_t d = (it < 11u) ? dv[it] : (int32_t)(uint32_t)(ut_rng_next(&seed) >> (32u + (it % 31u)));
+        uint64_t nd;
+        uint32_t um;
+        if (d == 0) {
+            continue;
+        }
+        fx_recip_init(&r, d, &st);
+        nd = (uint64_t)fx_uabs(d) << r.sh;
+        um = fx_uabs(r.m);
+        UT_CHECK(nd >= (UINT64_C(1) << 30));
+        UT_CHECK(nd <= (UINT64_C(1) << 31));
+        UT_CHECK(um >= (1u << 29));
+        UT_CHECK(um <= (1u << 30));
+        UT_CHECK((r.m < 0) == (d < 0));
+    }
+    UT_UEQ(st, 0u);
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(dot_matvec_matmul_random), UT_CASE(accumulator_overflow), UT_CASE(kernel_args),
         UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact), UT_CASE(dot_acc_and_shl64),
         UT_CASE(solve_fast_exact_cases), UT_CASE(solve_fast_vs_solve), UT_CASE(solve_fast_symmetry),
+        UT_CASE(solve_bound_large_x_reproducer), UT_CASE(recip_div_int32_min_edge), UT_CASE(recip_ranges),
     };
     return UT_RUN("fx_mat", cases);
 }

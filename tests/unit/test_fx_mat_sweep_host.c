@@ -443,6 +443,204 @@ UT_TEST(solve_fast_conditioned_systems)
            worst_kappa, worst_ratio);
 }
 
+/*
+ * fx_solve's bound over mixed scales (the audit's failure mode): n = 1..4, max|a_ij| from 2^1 to
+ * 2^(31-n) LSB of qa (random integers, or U diag(sigma) V^T with kappa up to 10^4), x from 2^4 to
+ * 2^30 LSB of qx with most systems at |x| far above max|a_ij| (up to 2^29 times), any qa, qx in
+ * [0, 40] and e = qa + qx - qb in [0, 31] chosen so that b fits int32.
+ * Reference: the exact solution of A x = b 2^e, from a long double inverse refined once with an
+ * exact __int128 residual on x in q(qx + 8): its error is below kappa 2^-60 |dx| (< 10^-6 LSB here).
+ * Asserted: the header's |x - x_ref| <= 2 n kappa_inf, and the derivation behind it (README):
+ * (2^n - 1)/2 kappa_inf (back substitution) + 2^-10 kappa_inf (elimination, <= 2^-19 kappa derived).
+ * fx_solve_fast: 2 n kappa (1 + 2^-29 |x|inf). The old elimination (a_ij rounded to qa) fails here.
+ */
+UT_TEST(solve_bound_mixed_scales)
+{
+    uint64_t seed = 4242u;
+    uint32_t it;
+    uint32_t solved = 0u;
+    uint32_t big_x = 0u;
+    uint32_t singular = 0u;
+    uint32_t viol = 0u;
+    uint32_t viol_fast = 0u;
+    uint32_t viol_sys_noflag = 0u;
+    long double worst = 0.0L;
+    long double worst_derived = 0.0L;
+    long double worst_fast = 0.0L;
+    for (it = 0u; it < 40000u; it++) {
+        uint32_t n = 1u + (it % 4u);
+        uint64_t r = ut_rng_next(&seed);
+        uint32_t ma = 1u + (uint32_t)(r % (31u - n));           /* bits of max|a_ij| */
+        uint32_t mx = 4u + (uint32_t)((r >> 8) % 27u);          /* bits of |x| */
+        uint32_t e;
+        uint32_t qa = (uint32_t)((r >> 16) % 41u);
+        uint32_t qx;
+        uint32_t qb;
+        long double a[4][4];
+        long double inv[4][4];
+        long double xref[4];
+        long double kappa;
+        int64_t xt[4];
+        int32_t ai[16];
+        int32_t bi[4];
+        int32_t x[4];
+        int32_t xf[4];
+        fx_solve_ws_t ws;
+        fx_status_t st = 0u;
+        fx_status_t stf = 0u;
+        uint32_t i;
+        uint32_t j;
+        bool ok = true;
+        long double xmax = 0.0L;
+        if ((mx < ma) && ((it % 8u) != 0u)) {
+            mx = ma + (uint32_t)((r >> 24) % (31u - ma));        /* mostly |x| >= |A| in LSB */
+            mx = (mx > 30u) ? 30u : mx;
+        }
+        e = ((ma + mx) > 27u) ? (ma + mx - 27u) : 0u;
+        e += (uint32_t)((r >> 32) % 3u);
+        if (e > 31u) {
+            continue;
+        }
+        qx = (uint32_t)((r >> 40) % 41u);
+        qx = (qx + qa < e) ? (e - qa) : qx;
+        qx = (qa + qx > 40u + e) ? (40u + e - qa) : qx;
+        qb = qa + qx - e;
+        if ((it % 3u) == 0u) {
+            /* conditioned: U diag(sigma) V^T, scaled to max 2^ma */
+            long double u[4][4];
+            long double v[4][4];
+            long double amax = 0.0L;
+            long double kt = powl(10.0L, 4.0L * (long double)(ut_rng_next(&seed) >> 11) / 9007199254740992.0L);
+            uint32_t k;
+            rand_orth(&seed, n, u);
+            rand_orth(&seed, n, v);
+            for (i = 0u; i < n; i++) {
+                for (j = 0u; j < n; j++) {
+                    long double sum = 0.0L;
+                    for (k = 0u; k < n; k++) {
+                        long double sig = (n == 1u) ? 1.0L : powl(kt, -(long double)k / (long double)(n - 1u));
+                        sum += u[i][k] * sig * v[j][k];
+                    }
+                    a[i][j] = sum;
+                    amax = (fabsl(sum) > amax) ? fabsl(sum) : amax;
+                }
+            }
+            for (i = 0u; i < n * n; i++) {
+                ai[i] = (int32_t)llroundl(a[i / n][i % n] / amax * ldexpl(1.0L, (int)ma));
+            }
+        } else {
+            for (i = 0u; i < n * n; i++) {
+                uint64_t w = ut_rng_next(&seed);
+                ai[i] = (int32_t)((int64_t)(w % ((UINT64_C(2) << ma) + 1u)) - ((int64_t)1 << ma));
+            }
+        }
+        for (i = 0u; i < n; i++) {
+            uint64_t w = ut_rng_next(&seed);
+            xt[i] = (int64_t)(w % (UINT64_C(2) << mx)) - ((int64_t)1 << mx);
+        }
+        for (i = 0u; i < n; i++) {
+            i128 sum = 0;
+            for (j = 0u; j < n; j++) {
+                sum += (i128)ai[i * n + j] * xt[j];
+            }
+            sum = o_shr(sum, e);
+            ok = ok && (sum <= INT32_MAX) && (sum >= INT32_MIN);
+            bi[i] = (int32_t)sum;
+        }
+        for (i = 0u; i < n; i++) {
+            for (j = 0u; j < n; j++) {
+                a[i][j] = (long double)ai[i * n + j];
+            }
+        }
+        if (!ok || !inv_ld(n, a, inv)) {
+            continue;
+        }
+        kappa = norm_inf(n, a) * norm_inf(n, inv);
+        {
+            /* x_ref: long double solve, then one refinement with the exact residual in q(qx + 8) */
+            int64_t xs[4];
+            long double res[4];
+            for (i = 0u; i < n; i++) {
+                long double sum = 0.0L;
+                for (j = 0u; j < n; j++) {
+                    sum += inv[i][j] * ldexpl((long double)bi[j], (int)e + 8);
+                }
+                ok = ok && (fabsl(sum) < 1.0e15L);
+                xs[i] = ok ? llroundl(sum) : 0;
+            }
+            for (i = 0u; i < n; i++) {
+                i128 rr = (i128)bi[i] * ((i128)1 << (e + 8u));
+                for (j = 0u; j < n; j++) {
+                    rr -= (i128)ai[i * n + j] * xs[j];
+                }
+                res[i] = (long double)rr;
+            }
+            for (i = 0u; i < n; i++) {
+                long double sum = 0.0L;
+                for (j = 0u; j < n; j++) {
+                    sum += inv[i][j] * res[j];
+                }
+                xref[i] = ((long double)xs[i] + sum) / 256.0L;
+                ok = ok && (fabsl(xref[i]) < 2147483000.0L);
+                xmax = (fabsl(xref[i]) > xmax) ? fabsl(xref[i]) : xmax;
+            }
+        }
+        if (!ok || (kappa > 1.0e7L)) {
+            continue;
+        }
+        fx_solve(&ws, ai, qa, bi, qb, n, x, qx, 1, &st);
+        fx_solve_fast(&ws, ai, qa, bi, qb, n, xf, qx, 1, &stf);
+        if ((st & FX_ST_SINGULAR) != 0u) {
+            /* a pivot u_kk below 1 LSB of qa; kappa_inf >= |A|inf / |u_kk| for every pivot of partial
+               pivoting (1 / u_kk is an entry of the inverse of a Schur complement, a block of A^-1) */
+            UT_CHECK(kappa >= norm_inf(n, a));
+            singular++;
+            continue;
+        }
+        UT_CHECK_UEQ(st, 0u);
+        UT_CHECK_UEQ(stf, 0u);
+        {
+            uint32_t v0 = viol;
+            for (i = 0u; i < n; i++) {
+                viol += (fabsl((long double)x[i] - xref[i]) <= 2.0L * (long double)n * kappa) ? 0u : 1u;
+            }
+            viol_sys_noflag += ((viol != v0) && (st == 0u)) ? 1u : 0u;
+            viol = v0;
+        }
+        for (i = 0u; i < n; i++) {
+            long double err = fabsl((long double)x[i] - xref[i]);
+            long double errf = fabsl((long double)xf[i] - xref[i]);
+            long double bound = 2.0L * (long double)n * kappa;
+            long double derived = (0.5L * (ldexpl(1.0L, (int)n) - 1.0L) + 1.0L / 1024.0L) * kappa;
+            long double bound_f = bound * (1.0L + xmax / 536870912.0L);
+            if (!(err <= bound)) {
+                if (viol < 5u) {
+                    printf("  violation: it %u n=%u ma=%u mx=%u kappa=%.2Lf err=%.2Lf LSB bound %.2Lf\n", it, n, ma,
+                           mx, kappa, err, bound);
+                }
+                viol++;
+            }
+            UT_CHECK(err <= derived);
+            if (!(errf <= bound_f)) {
+                viol_fast++;
+            }
+            worst = (err / bound > worst) ? err / bound : worst;
+            worst_derived = (err / derived > worst_derived) ? err / derived : worst_derived;
+            worst_fast = (errf / bound_f > worst_fast) ? errf / bound_f : worst_fast;
+        }
+        big_x += (xmax > ldexpl(1.0L, (int)ma + 8)) ? 1u : 0u;
+        solved++;
+    }
+    printf("fx_solve mixed scales: %u systems (%u with |x| > 2^8 max|a| in LSB, %u SINGULAR skipped): "
+           "%u violations of 2 n kappa (%u systems violating with no flag raised), max err / (2 n kappa) = %.3Lf, max err / ((2^n - 1)/2 kappa) = %.3Lf; "
+           "fx_solve_fast: %u violations, max err / bound = %.3Lf\n",
+           solved, big_x, singular, viol, viol_sys_noflag, worst, worst_derived, viol_fast, worst_fast);
+    UT_CHECK_UEQ(viol, 0u);
+    UT_CHECK_UEQ(viol_fast, 0u);
+    UT_CHECK(solved > 30000u);
+    UT_CHECK(big_x > 10000u);
+}
+
 UT_TEST(solve_singular_and_near_singular)
 {
     uint64_t seed = 77u;
@@ -485,7 +683,7 @@ int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(kernels_vs_exact), UT_CASE(recip_div_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_fast_conditioned_systems),
-        UT_CASE(solve_singular_and_near_singular),
+        UT_CASE(solve_bound_mixed_scales), UT_CASE(solve_singular_and_near_singular),
     };
     return UT_RUN("fx_mat_sweep", cases);
 }
