@@ -155,7 +155,8 @@ void MetricsTap::summary(host::Summary &s, const bridge::Counters *bridge_final)
             {"stepped", c.stepped}, {"dups", c.dups}, {"stale", c.stale}, {"gaps", c.gaps},
             {"gap_frames", c.gap_frames}, {"nonfinite_rej", c.nonfinite_rej}, {"range_rej", c.range_rej},
             {"malformed", c.malformed}, {"missed", c.missed}, {"table_rej", c.table_rej}, {"cmds", c.cmds},
-            {"cmd_rej", c.cmd_rej}, {"rejected", bridge::rejected_total(c)}};
+            {"cmd_rej", c.cmd_rej}, {"crc_rej", c.crc_rej}, {"time_rej", c.time_rej}, {"jump_rej", c.jump_rej},
+            {"resyncs", c.resyncs}, {"rejected", bridge::rejected_total(c)}};
         for (const auto &e : kv) {
             s.add_int(std::string("bridge_") + e.first, e.second);
         }

@@ -191,14 +191,15 @@ def ints(s, *keys):
 
 
 def case_bridge_counters(c):
-    # Each delivered frame is classified by the bridge exactly once (stepped, duplicate, stale or
-    # malformed), so with the core's own final counters the sum equals the injector's deliveries;
+    # Each delivered frame is classified by the bridge exactly once (stepped, duplicate, stale,
+    # malformed, or refused on its crc32 / time rule / sequence window), so with the core's own final counters the sum equals the injector's deliveries;
     # the last telemetry frame cannot count a duplicate or stale frame that arrives after it.
     runs = {
         "dup": {"seed": 7, "dup_ppm": 20000},
         "truncate": {"seed": 11, "truncate_ppm": 20000},
         "mixed": {"seed": 11, "drop_ppm": 30000, "dup_ppm": 30000, "reorder_ppm": 30000, "reorder_window": 3,
-                  "truncate_ppm": 10000},
+                  "truncate_ppm": 10000, "bitflip_ppm": 10000},
+        "bitflip": {"seed": 1058, "bitflip_ppm": 10000},
     }
     for name, faults in runs.items():
         scn = c.scenario("faults_" + name, OBS, faults=faults)
@@ -209,11 +210,19 @@ def case_bridge_counters(c):
         check("%s: counters are the bridge core's" % name, s.get("bridge_counters_from") == "bridge core, end of run")
         delivered, = ints(s, "fault_delivered")
         st, du, sl, ma = ints(s, "bridge_stepped", "bridge_dups", "bridge_stale", "bridge_malformed")
-        check("%s: delivered %d == stepped + dups + stale + malformed" % (name, delivered), delivered == st + du + sl + ma,
-              "%d + %d + %d + %d" % (st, du, sl, ma))
+        cr, tr, jr = ints(s, "bridge_crc_rej", "bridge_time_rej", "bridge_jump_rej")
+        check("%s: delivered %d == stepped + dups + stale + malformed + crc/time/jump refusals" % (name, delivered),
+              delivered == st + du + sl + ma + cr + tr + jr, "%d + %d + %d + %d + %d + %d + %d" % (st, du, sl, ma, cr, tr, jr))
         check("%s: bridge missed == plant missed" % name, s["bridge_missed"] == s["plant_missed"])
-        check("%s: rejected == malformed + range + nonfinite + table" % name,
-              int(s["bridge_rejected"]) == ma + sum(ints(s, "bridge_range_rej", "bridge_nonfinite_rej", "bridge_table_rej")))
+        check("%s: rejected == malformed + range + nonfinite + table + crc + time + jump" % name,
+              int(s["bridge_rejected"]) == ma + cr + tr + jr +
+              sum(ints(s, "bridge_range_rej", "bridge_nonfinite_rej", "bridge_table_rej")))
+        if name == "bitflip":
+            # every flipped transmission refused (crc32, or the fingerprint) and re-sent, nothing else
+            check("bitflip: crc_rej + malformed == injected flips == re-sent frames > 0",
+                  int(s["fault_bitflipped"]) > 0 and cr + ma == int(s["fault_bitflipped"]) == int(s["plant_retx"]),
+                  "%d + %d, %s, %s" % (cr, ma, s["fault_bitflipped"], s["plant_retx"]))
+            check("bitflip: no time or window refusal, no range rejection", tr + jr + int(s["bridge_range_rej"]) == 0)
         if name == "dup":
             check("dup: bridge dups == injected duplicates > 0", int(s["fault_duplicated"]) > 0
                   and s["bridge_dups"] == s["fault_duplicated"] == s["plant_dup_cmds"],
