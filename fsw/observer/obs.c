@@ -169,6 +169,10 @@ static uint32_t predict(obs_state_t *s, const obs_params_t *p, const int32_t *u_
 static uint32_t update_channel(obs_state_t *s, const obs_params_t *p, uint32_t c, int32_t y_q29,
                                obs_out_t *out, fx_status_t *st)
 {
+    /* Innovation gate (d2_reject): a sample with d^2 = e_s^2 / S above gamma^2 = d2_max is not
+       used at all, so one wild sample moves neither x-hat, kappa nor P. An accepted sample has
+       |e_s| <= gamma sqrt(S), hence moves state j by |L_j e_s| = |P_jc| |e_s| / S <= gamma
+       sqrt(P_jj) (Cauchy-Schwarz, P_cc <= S): at most gamma standard deviations. */
     uint32_t h = 0u;
     int32_t e = fx_sub_sat(y_q29, s->x_q29[c], st);
     int32_t sn = fx_add_sat(s->p_q30[(c * OBS_NZ) + c], p->r_q30, st);
@@ -187,7 +191,9 @@ static uint32_t update_channel(obs_state_t *s, const obs_params_t *p, uint32_t c
         h |= OBS_H_INNOV_HIGH;
         fx_cnt_inc(&s->tlm.n_innov);
     }
-    if ((p->d2_reject == 0u) || (d2 <= p->d2_max_q16)) {
+    if ((p->d2_reject != 0u) && (d2 > p->d2_max_q16)) {
+        fx_cnt_inc(&s->rej_run[c]);
+    } else {
         int32_t l_q28[OBS_NZ];
         int32_t row_q30[OBS_NZ];
         uint32_t j;
@@ -205,17 +211,25 @@ static uint32_t update_channel(obs_state_t *s, const obs_params_t *p, uint32_t c
             int32_t dx = fx_mul(l_q28[j], OBS_F_Q, e, OBS_X_Q, qfmt(qr), st);
             if (j < OBS_NX) {
                 s->x_q29[j] = fx_add_sat(s->x_q29[j], dx, st);
-            } else {
+            } else if (!s->kappa_frozen) {
                 s->kappa_q28 = fx_add_sat(s->kappa_q28, dx, st);
+            } else {
+                /* frozen: kappa keeps its value */
             }
         }
+        s->rej_run[c] = 0u;
         /* P_s <- P_s - L_s P_s[c, :] (symmetric form: upper triangle, mirrored). */
         for (j = 0u; j < OBS_NZ; j++) {
             for (k = j; k < OBS_NZ; k++) {
-                int32_t v = fx_sub_sat(s->p_q30[(j * OBS_NZ) + k],
-                                       fx_mul(l_q28[j], OBS_F_Q, row_q30[k], OBS_P_Q, OBS_P_Q, st), st);
-                s->p_q30[(j * OBS_NZ) + k] = v;
-                s->p_q30[(k * OBS_NZ) + j] = v;
+                /* Frozen kappa is the gain L_kappa = 0: the Joseph form of that suboptimal gain
+                   equals this update everywhere except P_kk, which keeps its value (the x rows
+                   of L are unchanged, and L_kappa P_cx = P_kc L_x^T in the cross terms). */
+                if (!(s->kappa_frozen && (j == OBS_NX) && (k == OBS_NX))) {
+                    int32_t v = fx_sub_sat(s->p_q30[(j * OBS_NZ) + k],
+                                           fx_mul(l_q28[j], OBS_F_Q, row_q30[k], OBS_P_Q, OBS_P_Q, st), st);
+                    s->p_q30[(j * OBS_NZ) + k] = v;
+                    s->p_q30[(k * OBS_NZ) + j] = v;
+                }
             }
         }
     }
@@ -312,6 +326,63 @@ static void to_counts(obs_state_t *s, const obs_params_t *p, int32_t *u_q29, boo
     }
 }
 
+/* ------------------------------------------------------------------ rejection bookkeeping */
+
+uint32_t obs_rej_persist_mask(const obs_state_t *s, const obs_params_t *p)
+{
+    uint32_t m = 0u;
+    uint32_t c;
+    for (c = 0u; c < OBS_NY; c++) {
+        if (s->rej_run[c] >= (uint32_t)p->n_rej_safe) {
+            m |= (uint32_t)1 << c;
+        }
+    }
+    return m;
+}
+
+/* Leaky rejection level: + rej_leak_inc on a step with a rejection, - 1 on a step without, capped
+   at rej_freeze_on + rej_leak_inc so that it drains within that many clean steps. kappa
+   adaptation freezes when the level reaches rej_freeze_on and resumes when it is back at 0: a
+   single rejected sample needs no freeze (the gate removed it); a burst means the samples that
+   pass the gate may be contaminated too, each able to move kappa by up to gamma sigma_kappa,
+   while x-hat keeps tracking. With the shipped 50 / 51, two rejections within 49 steps (1 s)
+   freeze, any sustained rate above 1 in 51 steps keeps it frozen, and it releases at most
+   101 clean steps after the last rejection. */
+static uint32_t track_rejections(obs_state_t *s, const obs_params_t *p, bool rejected)
+{
+    uint32_t h = 0u;
+    uint32_t cap = (uint32_t)p->rej_freeze_on + (uint32_t)p->rej_leak_inc;
+    if (rejected) {
+        s->rej_level += (uint32_t)p->rej_leak_inc;
+        if (s->rej_level > cap) {
+            s->rej_level = cap;
+        }
+    } else if (s->rej_level > 0u) {
+        s->rej_level--;
+    } else {
+        /* clean and drained */
+    }
+    if (s->rej_level >= (uint32_t)p->rej_freeze_on) {
+        s->kappa_frozen = true;
+    } else if (s->rej_level == 0u) {
+        s->kappa_frozen = false;
+    } else {
+        /* hysteresis: keep */
+    }
+    if (s->kappa_frozen) {
+        h |= OBS_H_ADAPT_FROZEN;
+    }
+    if (obs_rej_persist_mask(s, p) != 0u) {
+        s->rej_safe = true;
+    }
+    if (s->rej_safe) {
+        /* Latched until init (mode re-entry): either the sensor is bad or the estimate has lost
+           lock, and neither is cured by flying on; the command is zero meanwhile. */
+        h |= OBS_H_INNOV_PERSIST | OBS_H_ADAPT_FROZEN;
+    }
+    return h;
+}
+
 /* ------------------------------------------------------------------ sequencing and validity */
 
 /* Steps since the last sample, from the modular u32 sequence: 1 normally, <= 0 for a stale
@@ -373,6 +444,10 @@ static void start_estimate(obs_state_t *s, const obs_params_t *p, const int32_t 
     s->lost = false;
     s->invalid_run = 0u;
     s->good_run = 0u;
+    s->rej_run[0] = 0u;
+    s->rej_run[1] = 0u;
+    s->rej_level = 0u;
+    s->kappa_frozen = false;
 }
 
 /* Track loss of measurements; returns health bits and whether the filter may update. */
@@ -508,7 +583,8 @@ fsw_rc_t obs_params_check(const obs_params_t *p, uint32_t *why)
     }
     w |= check_cov(p);
     w |= check_scales(p);
-    if ((p->n_lost == 0u) || (p->n_good == 0u) || (p->n_sat == 0u) || (p->n_gap_max == 0u) || (p->d2_max_q16 <= 0)) {
+    if ((p->n_lost == 0u) || (p->n_good == 0u) || (p->n_sat == 0u) || (p->n_gap_max == 0u) || (p->d2_max_q16 <= 0) ||
+        (p->n_rej_safe == 0u) || (p->rej_leak_inc == 0u) || (p->rej_freeze_on == 0u)) {
         w |= OBS_WHY_FAULT;
     }
     if ((p->gyro_cnt_shift > 31u) || (p->act_cnt_shift > 31u) || (p->gyro_max_cnt <= 0) || (p->act_max_cnt <= 0)) {
@@ -591,6 +667,11 @@ fsw_rc_t obs_init(obs_state_t *s, const obs_params_t *p, obs_out_t *out)
     s->invalid_run = 0u;
     s->good_run = 0u;
     s->limited_run = 0u;
+    s->rej_run[0] = 0u;
+    s->rej_run[1] = 0u;
+    s->rej_level = 0u;
+    s->kappa_frozen = false;
+    s->rej_safe = false;
     zero_tlm(&s->tlm);
     s->tlm.revision = p->revision;
     s->tlm.health_sticky = OBS_H_NOT_INIT;
@@ -641,6 +722,7 @@ static uint32_t run_filter(obs_state_t *s, const obs_params_t *p, uint32_t mask,
 {
     uint32_t h = 0u;
     uint32_t c;
+    bool rejected = false;
     int32_t e_q29[OBS_NY];
     for (c = 0u; c < OBS_NY; c++) {
         bool valid = (mask & ((uint32_t)1 << c)) != 0u;
@@ -648,17 +730,21 @@ static uint32_t run_filter(obs_state_t *s, const obs_params_t *p, uint32_t mask,
         e_q29[c] = valid ? fx_sub_sat(y_q29[c], s->x_q29[c], st) : 0;
         if (valid && (!s->lost) && (p->estimator == OBS_EST_EKF)) {
             h |= update_channel(s, p, c, y_q29[c], out, st);
+            /* an accepted update zeroes the run, a rejection raises it */
+            rejected = rejected || (s->rej_run[c] > 0u);
         }
     }
+    h |= track_rejections(s, p, rejected);
     h |= clamp_kappa(s, p);
     if (p->estimator == OBS_EST_EKF) {
         h |= clip_cov(s, p);
     }
-    /* Command from the updated estimate; zero while measurements are lost. */
-    if (!s->lost) {
+    /* Command from the updated estimate; zero while measurements are lost or persistently
+       rejected. */
+    if ((!s->lost) && (!s->rej_safe)) {
         h |= command(s, p, u_q29, st);
     }
-    to_counts(s, p, u_q29, !s->lost, out, st);
+    to_counts(s, p, u_q29, (!s->lost) && (!s->rej_safe), out, st);
     /* Time update with the command actually applied. */
     h |= predict(s, p, u_q29, st);
     if (p->estimator == OBS_EST_CONST_W) {

@@ -78,8 +78,11 @@ typedef struct {
     uint16_t n_good;
     uint16_t n_sat;
     uint16_t n_gap_max;
-    int32_t  d2_max_q16;
-    uint8_t  d2_reject;               /* 1: skip an update whose d^2 > d2_max (default 0) */
+    int32_t  d2_max_q16;              /* gamma^2 of the innovation gate (d^2 = e_s^2 / S, per channel) */
+    uint8_t  d2_reject;               /* 1: skip an update whose d^2 > d2_max (the gate); 0: monitor */
+    uint16_t n_rej_safe;              /* consecutive rejections of a channel that declare it invalid */
+    uint16_t rej_leak_inc;            /* leaky rejection level: + this per step with a rejection, -1 without */
+    uint16_t rej_freeze_on;           /* kappa adaptation frozen from this level until it leaks back to 0 */
     uint32_t revision;                /* table revision, echoed in telemetry */
 } obs_params_t;
 
@@ -131,6 +134,10 @@ typedef struct {
     uint32_t invalid_run;             /* steps without any valid axis (saturating) */
     uint32_t good_run;                /* valid steps since MEAS_LOST (saturating) */
     uint32_t limited_run;             /* consecutive limited commands (saturating) */
+    uint32_t rej_run[OBS_NY];         /* consecutive gate rejections per channel (saturating) */
+    uint32_t rej_level;               /* leaky rejection level, <= rej_freeze_on + rej_leak_inc */
+    bool     kappa_frozen;            /* kappa adaptation frozen by the rejection level */
+    bool     rej_safe;                /* latched: a channel persistently rejected; zero command */
     /* scratch (caller-owned so no function needs a large stack frame) */
     int32_t  f_q28[OBS_NZ * OBS_NZ];
     int32_t  t_q30[OBS_NZ * OBS_NZ];
@@ -140,6 +147,8 @@ typedef struct {
 } obs_state_t;
 
 fsw_rc_t obs_params_check(const obs_params_t *p, uint32_t *why);
+/* Bit c set: channel c has failed the innovation gate n_rej_safe times in a row. */
+uint32_t obs_rej_persist_mask(const obs_state_t *s, const obs_params_t *p);
 fsw_rc_t obs_init(obs_state_t *s, const obs_params_t *p, obs_out_t *out);
 void     obs_step(obs_state_t *s, const obs_params_t *p, const obs_in_t *in, obs_out_t *out);
 

@@ -16,9 +16,10 @@
 #define OBS_H_ADAPT_FROZEN           (0x00004000u)  /* kappa adaptation frozen */
 #define OBS_H_CMD_LIMITED            (0x00008000u)  /* command vector limited this step */
 #define OBS_H_CMD_LIMIT_PERSIST      (0x00010000u)  /* command limited for n_sat steps */
-#define OBS_H_INNOV_HIGH             (0x00020000u)  /* normalised innovation above d2_max */
+#define OBS_H_INNOV_HIGH             (0x00020000u)  /* normalised innovation above d2_max (rejected when d2_reject) */
 #define OBS_H_COV_CLIP               (0x00040000u)  /* covariance clipped to its floor or ceiling */
 #define OBS_H_SEQ                    (0x00080000u)  /* sequence gap or repeat */
+#define OBS_H_INNOV_PERSIST          (0x00100000u)  /* a channel failed the innovation gate n_rej_safe times in a row */
 
 /* obs_params_check reasons (bits of *why); a table veto's detail is 1 + the bit index. */
 #define OBS_WHY_PERIOD               (0x00000001u)  /* period */
@@ -39,7 +40,7 @@
 #define OBS_N_SENS                   2u
 #define OBS_N_ACT                    2u
 #define OBS_TBL_ID                   0x0B01u
-#define OBS_TBL_LAYOUT               1u
+#define OBS_TBL_LAYOUT               2u
 #define OBS_TLM_BYTES                100u  /* bytes of the block obs_tlm_wr writes */
 #define OBS_TLM_LAYOUT               0x00010002u  /* layout version of the whole telemetry */
 #define OBS_TLM_TOTAL_BYTES          200u  /* bytes of the whole telemetry: header, actuators, health, block */

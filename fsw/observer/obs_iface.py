@@ -54,9 +54,10 @@ MODULE = Module(
         Bit("ADAPT_FROZEN", 0x00004000, "kappa adaptation frozen"),
         Bit("CMD_LIMITED", 0x00008000, "command vector limited this step"),
         Bit("CMD_LIMIT_PERSIST", 0x00010000, "command limited for n_sat steps"),
-        Bit("INNOV_HIGH", 0x00020000, "normalised innovation above d2_max"),
+        Bit("INNOV_HIGH", 0x00020000, "normalised innovation above d2_max (rejected when d2_reject)"),
         Bit("COV_CLIP", 0x00040000, "covariance clipped to its floor or ceiling"),
         Bit("SEQ", 0x00080000, "sequence gap or repeat"),
+        Bit("INNOV_PERSIST", 0x00100000, "a channel failed the innovation gate n_rej_safe times in a row"),
     ],
     why=[
         Bit("PERIOD", 0x001, "period"),
@@ -70,10 +71,11 @@ MODULE = Module(
         Bit("SENSOR", 0x100, "gyro/actuator scaling out of range"),
     ],
     table_id=0x0B01,
-    table_layout=1,
+    table_layout=2,   # 2: n_rej_safe, rej_leak_inc, rej_freeze_on appended (innovation gate)
     table_fields=(["period_us", "estimator", "gyro_cnt_shift", "act_cnt_shift", "d2_reject", "sigma",
                    "gyro_max_cnt", "act_max_cnt", "bdot_max_q29", "bdot_hw_q29", "q_phi0", "q_phik", "q_gam0",
                    "q_gamk", "q_d", "q_w", "n_lost", "n_good", "n_sat", "n_gap_max", "kappa0_q28",
                    "kappa_init_q28", "kappa_lo_q28", "kappa_hi_q28", "r_q30", "p_floor_q30", "p_ceil_q30",
-                   "d2_max_q16"] + _vec("ls", 7) + _vec("p0_q30", 7) + _vec("qd_q30", 7)),
+                   "d2_max_q16"] + _vec("ls", 7) + _vec("p0_q30", 7) + _vec("qd_q30", 7)
+                  + ["n_rej_safe", "rej_leak_inc", "rej_freeze_on"]),
 )

@@ -5,12 +5,18 @@
  * actuators hold their safe value (zero rate), which the observer's model would not know.
  * CMD_LIMIT_PERSIST is reported, not a SAFE trigger: with insufficient authority the spec's
  * scenario (10-observer S0-9) expects the loop to keep commanding and the plant to end DIVERGED.
+ * INNOV_PERSIST (a gyro channel failing the innovation gate n_rej_safe times in a row) is a fault
+ * bit: the observer latches its own safe output (zero command, kappa frozen) until the mode is
+ * re-entered, and the executive reports FSW_H_MODULE. It cannot raise the executive's SAFE
+ * itself: the only automatic SAFE rule a mission declares is a channel invalid for stale_max
+ * steps, judged on the range this adapter returns from a const query (fsw_mission.h) that cannot
+ * lift a veto once the mode has left, so a vetoed channel would hold the executive in SAFE.
  * Commit rule: a validated table becomes active at the next step boundary; the covariance lives in
  * the table's scaled coordinates, so a new scale vector restarts the observer when it is flying.
  */
 #include "obs_mission.h"
 
-#define OBS_FAULT_BITS (OBS_H_MEAS_LOST | OBS_H_CMD_LIMIT_PERSIST | OBS_H_COV_CLIP | FX_ST_MASK)
+#define OBS_FAULT_BITS (OBS_H_MEAS_LOST | OBS_H_CMD_LIMIT_PERSIST | OBS_H_COV_CLIP | OBS_H_INNOV_PERSIST | FX_ST_MASK)
 
 /* The generated total is the header, the actuator counts, the health word and the block. */
 FX_STATIC_ASSERT(obs_mis_sa_tlm, OBS_TLM_TOTAL_BYTES == (FSW_TLM_HEAD_BYTES + (4u * OBS_N_ACT) + 4u + OBS_TLM_BYTES));

@@ -13,7 +13,7 @@
 #include "obs.h"
 #include "fsw_mission.h"
 
-#define OBS_TBL_PAYLOAD 646u   /* bytes; obs_table.c documents the layout */
+#define OBS_TBL_PAYLOAD 652u   /* bytes; obs_table.c documents the layout */
 
 /* The mission's block inside fsw_t. */
 typedef struct {

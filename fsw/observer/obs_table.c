@@ -1,7 +1,7 @@
 /*
  * obs_table.c — the observer parameter table on the wire (spec 00 §3.2, 10-observer §4.6).
  *
- * table_id OBS_TBL_ID (0x0B01), layout_version OBS_TBL_LAYOUT (1), payload OBS_TBL_PAYLOAD (646) bytes, little-endian, field
+ * table_id OBS_TBL_ID (0x0B01), layout_version OBS_TBL_LAYOUT (2), payload OBS_TBL_PAYLOAD (652) bytes, little-endian, field
  * by field (never a struct copy). The header revision becomes obs_params_t.revision.
  *
  *   off  type      field                 off  type       field
@@ -21,7 +21,12 @@
  *    36  u16       n_good                446  i32[12]    gam0
  *    38  u16       n_sat                 494  i32[12]    gamk
  *    40  u16       n_gap_max             542  i32[12]    d
- *                                        590  i32[14]    w          (646 = end)
+ *                                        590  i32[14]    w
+ *                                        646  u16        n_rej_safe
+ *                                        648  u16        rej_leak_inc
+ *                                        650  u16        rej_freeze_on  (652 = end)
+ *
+ * Layout 2 appended the three innovation-gate fields (layout 1 ended at 646).
  *
  * The limits descriptor range-checks every scalar and the ls/p0/qd vectors; matrix entries
  * span the whole int32 range and are not listed. Relations give the orderings the loader can
@@ -87,6 +92,9 @@ static const fsw_field_lim_t OBS_LIMS[] = {
     LIM_VEC7(OFF_LS, -40, 40),                /* 28..34 ls */
     LIM_VEC7(OFF_P0, 1, I32MAX),              /* 35..41 p0_q30 */
     LIM_VEC7(OFF_QD, 4, I32MAX),              /* 42..48 qd_q30: >= 4 LSB (spec 10 §4.5) */
+    {646u, FSW_FT_U16, 1, 65535},             /* 49 n_rej_safe */
+    {648u, FSW_FT_U16, 1, 65535},             /* 50 rej_leak_inc */
+    {650u, FSW_FT_U16, 1, 65535},             /* 51 rej_freeze_on */
 };
 
 /* value[a] + margin <= value[b] */
@@ -165,6 +173,9 @@ uint32_t obs_table_encode(const obs_params_t *p, uint32_t revision, uint8_t *img
         fsw_wr_i32n(&w, p->gamk, OBS_NX * OBS_NU);
         fsw_wr_i32n(&w, p->d, OBS_NU * OBS_NX);
         fsw_wr_i32n(&w, p->w, OBS_NZ * OBS_NY);
+        fsw_wr_u16(&w, p->n_rej_safe);
+        fsw_wr_u16(&w, p->rej_leak_inc);
+        fsw_wr_u16(&w, p->rej_freeze_on);
         if ((!w.err) && (w.pos == OBS_TBL_PAYLOAD)) {
             fsw_table_write_header(img, (uint16_t)OBS_TBL_ID, (uint16_t)OBS_TBL_LAYOUT, OBS_TBL_PAYLOAD,
                                    revision);
@@ -224,6 +235,9 @@ fsw_rc_t obs_table_decode(const uint8_t *payload, uint32_t len, uint32_t revisio
         fsw_rd_i32n(&r, q->gamk, OBS_NX * OBS_NU);
         fsw_rd_i32n(&r, q->d, OBS_NU * OBS_NX);
         fsw_rd_i32n(&r, q->w, OBS_NZ * OBS_NY);
+        q->n_rej_safe = fsw_rd_u16(&r);
+        q->rej_leak_inc = fsw_rd_u16(&r);
+        q->rej_freeze_on = fsw_rd_u16(&r);
         q->revision = revision;
         if ((!r.err) && (r.pos == len)) {
             rc = FSW_OK;

@@ -173,8 +173,11 @@ const obs_params_t OBS_TBL_50HZ_PHYS = {
     .n_good = 5u,
     .n_sat = 50u,
     .n_gap_max = 10u,
-    .d2_max_q16 = INT32_C(1638400),  /* 25, q16 */
-    .d2_reject = 0u,
+    .d2_max_q16 = INT32_C(1073741824),  /* 16384, q16 */
+    .d2_reject = 1u,
+    .n_rej_safe = 25u,
+    .rej_leak_inc = 50u,
+    .rej_freeze_on = 51u,
     .revision = 1u,
 };
 
@@ -343,8 +346,11 @@ const obs_params_t OBS_TBL_50HZ_PAPER = {
     .n_good = 5u,
     .n_sat = 50u,
     .n_gap_max = 10u,
-    .d2_max_q16 = INT32_C(1638400),  /* 25, q16 */
-    .d2_reject = 0u,
+    .d2_max_q16 = INT32_C(1073741824),  /* 16384, q16 */
+    .d2_reject = 1u,
+    .n_rej_safe = 25u,
+    .rej_leak_inc = 50u,
+    .rej_freeze_on = 51u,
     .revision = 1u,
 };
 
@@ -513,8 +519,11 @@ const obs_params_t OBS_TBL_5HZ_PAPER = {
     .n_good = 5u,
     .n_sat = 50u,
     .n_gap_max = 10u,
-    .d2_max_q16 = INT32_C(1638400),  /* 25, q16 */
-    .d2_reject = 0u,
+    .d2_max_q16 = INT32_C(1073741824),  /* 16384, q16 */
+    .d2_reject = 1u,
+    .n_rej_safe = 25u,
+    .rej_leak_inc = 50u,
+    .rej_freeze_on = 51u,
     .revision = 1u,
 };
 
@@ -684,7 +693,10 @@ const obs_params_t OBS_TBL_PAPER_PRINTED = {
     .n_good = 5u,
     .n_sat = 50u,
     .n_gap_max = 10u,
-    .d2_max_q16 = INT32_C(1638400),  /* 25, q16 */
-    .d2_reject = 0u,
+    .d2_max_q16 = INT32_C(1073741824),  /* 16384, q16 */
+    .d2_reject = 1u,
+    .n_rej_safe = 25u,
+    .rej_leak_inc = 50u,
+    .rej_freeze_on = 51u,
     .revision = 1u,
 };

@@ -47,6 +47,11 @@ ObsTable dequantise(const obs_params_t &p)
     t.gyro_lsb = std::ldexp(1.0, static_cast<int>(p.gyro_cnt_shift) - 29);
     t.act_lsb = std::ldexp(1.0, static_cast<int>(p.act_cnt_shift) - 29);
     t.act_max_cnt = p.act_max_cnt;
+    t.d2_max = dq(p.d2_max_q16, 16);
+    t.d2_reject = p.d2_reject != 0u;
+    t.n_rej_safe = p.n_rej_safe;
+    t.rej_leak_inc = p.rej_leak_inc;
+    t.rej_freeze_on = p.rej_freeze_on;
     return t;
 }
 
@@ -56,6 +61,10 @@ ObsState from_fixed(const obs_state_t &s)
     for (int i = 0; i < 6; ++i) { st.x(i) = dq(s.x_q29[i], 29); }
     st.kappa = dq(s.kappa_q28, 28);
     for (int i = 0; i < 2; ++i) { st.qres(i) = dq(s.qres_q29[i], 29); }
+    st.rej_run = {{s.rej_run[0], s.rej_run[1]}};
+    st.rej_level = s.rej_level;
+    st.kappa_frozen = s.kappa_frozen;
+    st.rej_safe = s.rej_safe;
     for (int i = 0; i < 7; ++i) {
         for (int j = 0; j < 7; ++j) { st.p(i, j) = dq(s.p_q30[i * 7 + j], 30); }
     }
@@ -78,25 +87,54 @@ ObsState initial_state(const obs_params_t &p, const std::array<int32_t, 2> &y_cn
 
 ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt, bool per_axis_clip)
 {
-    ObsStepOut out{{0, 0}, false, Eigen::Matrix<double, 7, 2>::Zero(), Eigen::Matrix<double, 7, 7>::Zero(),
-                   Eigen::Matrix<double, 6, 2>::Zero()};
+    ObsStepOut out{{0, 0}, false, 0u, {{0.0, 0.0}}, Eigen::Matrix<double, 7, 2>::Zero(),
+                   Eigen::Matrix<double, 7, 7>::Zero(), Eigen::Matrix<double, 6, 2>::Zero()};
     // Measurement update, one scalar channel at a time, in scaled coordinates.
     Eigen::Matrix<double, 7, 1> z;
     z << st.x, st.kappa;
     for (int c = 0; c < 2; ++c) {
         double e = y_cnt[static_cast<size_t>(c)] * t.gyro_lsb - z(c);
         double sn = st.p(c, c) + t.r;
+        const double es = e / t.s(c);
+        out.d2[static_cast<size_t>(c)] = es * es / sn;
+        if (t.d2_reject && out.d2[static_cast<size_t>(c)] > t.d2_max) {
+            // The gate: the sample is not used at all.
+            ++st.rej_run[static_cast<size_t>(c)];
+            out.rejected |= 1u << c;
+            continue;
+        }
         Eigen::Matrix<double, 7, 1> l = st.p.col(c) / sn;
         out.gain.col(c) = l;
         Eigen::Matrix<double, 1, 7> row = st.p.row(c);
-        for (int j = 0; j < 7; ++j) { z(j) += l(j) * e * t.s(j) / t.s(c); }
+        for (int j = 0; j < 6; ++j) { z(j) += l(j) * e * t.s(j) / t.s(c); }
+        if (!st.kappa_frozen) { z(6) += l(6) * e * t.s(6) / t.s(c); }
+        // Frozen kappa is the gain L_kappa = 0, whose Joseph form differs from this update only
+        // in P_kk, which keeps its value.
+        const double pkk = st.p(6, 6);
         st.p -= l * row;
+        if (st.kappa_frozen) { st.p(6, 6) = pkk; }
+        st.rej_run[static_cast<size_t>(c)] = 0u;
     }
+    // Leaky rejection level: freeze kappa at rej_freeze_on, release at 0; latch the safe output
+    // after n_rej_safe consecutive rejections of a channel.
+    const uint32_t cap = t.rej_freeze_on + t.rej_leak_inc;
+    if (out.rejected != 0u) {
+        st.rej_level = std::min(st.rej_level + t.rej_leak_inc, cap);
+    } else if (st.rej_level > 0u) {
+        --st.rej_level;
+    }
+    if (st.rej_level >= t.rej_freeze_on) { st.kappa_frozen = true; }
+    else if (st.rej_level == 0u) { st.kappa_frozen = false; }
+    if (st.rej_run[0] >= t.n_rej_safe || st.rej_run[1] >= t.n_rej_safe) { st.rej_safe = true; }
     st.x = z.head<6>();
     st.kappa = std::min(std::max(z(6), t.kappa_lo), t.kappa_hi);
     for (int i = 0; i < 7; ++i) { st.p(i, i) = std::min(std::max(st.p(i, i), t.p_floor), t.p_ceil); }
     // Command: u = -D x, limited as a vector, quantised to counts; the model uses the counts.
     Eigen::Vector2d u = -t.d * st.x;
+    if (st.rej_safe) {   // latched safe output: zero command, no quantisation residual kept
+        u.setZero();
+        st.qres.setZero();
+    }
     double mag = u.cwiseAbs().maxCoeff();
     if (mag > t.bdot_max) {
         if (per_axis_clip) {

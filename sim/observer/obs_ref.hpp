@@ -27,6 +27,10 @@ struct ObsTable {
     double bdot_max;                        // rad/s
     double gyro_lsb, act_lsb;               // rad/s per count
     int32_t act_max_cnt;
+    // Innovation gate and rejection bookkeeping (obs.c update_channel, track_rejections).
+    double d2_max = 0.0;                    // gamma^2
+    bool d2_reject = false;
+    uint32_t n_rej_safe = 1u, rej_leak_inc = 1u, rej_freeze_on = 1u;
 };
 
 // Dequantise a C table (integer / 2^q), the values the fixed-point code effectively uses.
@@ -37,6 +41,10 @@ struct ObsState {
     double kappa;                           // K / 0.01 s^-2
     Eigen::Matrix<double, 7, 7> p;          // scaled covariance
     Eigen::Vector2d qres = Eigen::Vector2d::Zero();   // command quantisation residual, rad/s
+    std::array<uint32_t, 2> rej_run{{0u, 0u}};        // consecutive gate rejections per channel
+    uint32_t rej_level = 0u;                          // leaky rejection level
+    bool kappa_frozen = false;
+    bool rej_safe = false;                            // latched zero command
 };
 
 // The fixed-point state read as real values (for per-step golden comparisons).
@@ -45,6 +53,8 @@ ObsState from_fixed(const obs_state_t &s);
 struct ObsStepOut {
     std::array<int32_t, 2> cmd_cnt;
     bool limited;
+    uint32_t rejected = 0u;                 // bit c: channel c failed the gate this step
+    std::array<double, 2> d2{{0.0, 0.0}};   // normalised innovation squared per channel
     // Intermediates of the step, for golden tests that derive their error bounds per step.
     Eigen::Matrix<double, 7, 2> gain;       // scaled Kalman gains L_s, one column per channel
     Eigen::Matrix<double, 7, 7> fs;         // scaled transition matrix of the time update

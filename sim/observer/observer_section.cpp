@@ -102,7 +102,8 @@ public:
             m.ode_substeps = static_cast<std::uint32_t>(r.integer(root["ode_substeps"], "ode_substeps", 0, 1000000));
         }
         if (const YAML::Node g = root["gyro"]) {
-            r.check_keys(g, "gyro", {"noise_radps", "bias_radps", "bias_sigma_radps", "seed", "lsb_shift", "max_cnt"});
+            r.check_keys(g, "gyro", {"noise_radps", "bias_radps", "bias_sigma_radps", "seed", "lsb_shift", "max_cnt",
+                                    "glitch_s", "glitch_channel", "glitch_bit"});
             if (g["noise_radps"]) {
                 m.gyro.noise_radps = r.number(g["noise_radps"], "gyro.noise_radps", 0.0, 1.0);
             }
@@ -120,6 +121,15 @@ public:
             }
             if (g["max_cnt"]) {
                 m.gyro.max_cnt = static_cast<std::int32_t>(r.integer(g["max_cnt"], "gyro.max_cnt", 1, INT32_MAX));
+            }
+            if (g["glitch_s"]) {
+                m.gyro.glitch_s = r.number(g["glitch_s"], "gyro.glitch_s", 0.0, 1.0e7);
+            }
+            if (g["glitch_channel"]) {
+                m.gyro.glitch_channel = static_cast<std::uint32_t>(r.integer(g["glitch_channel"], "gyro.glitch_channel", 0, 1));
+            }
+            if (g["glitch_bit"]) {
+                m.gyro.glitch_bit = static_cast<std::uint32_t>(r.integer(g["glitch_bit"], "gyro.glitch_bit", 0, 31));
             }
         }
         if (const YAML::Node g = root["gimbal"]) {

@@ -6,7 +6,8 @@
 //   mission: detumble
 //   model: M-phys | M-paper, sigma: +1 | -1 (both required, and they must agree)
 //   k2_true_per_s2, j_factor, w0_degps [y, z], mu0_deg, mudot0_degps, propagator: zoh | ode,
-//   ode_substeps, gyro: {noise_radps, bias_radps, bias_sigma_radps, seed, lsb_shift, max_cnt},
+//   ode_substeps, gyro: {noise_radps, bias_radps, bias_sigma_radps, seed, lsb_shift, max_cnt,
+//         glitch_s, glitch_channel, glitch_bit},
 //   gimbal: {lsb_shift, hw_limit_radps}, limits: {mu_max_deg, w_max_degps},
 //   fsw: {table: obs_50hz_phys | obs_50hz_paper | obs_5hz_paper | obs_paper_printed,
 //         k_hat0, bdot_max_degps}
@@ -32,6 +33,12 @@ struct GyroConfig {
     std::uint64_t seed = 0u;
     int lsb_shift = 20;                       // LSB = 2^-lsb_shift rad/s
     std::int32_t max_cnt = (1 << 20) - 1;     // full scale, counts; SAT at |count| == max_cnt
+    // One wild but in-range sample from the sensor itself (a single-event upset in the gyro's
+    // output register): the sample at t = glitch_s (the step nearest it) has bit glitch_bit of
+    // the two's-complement count of glitch_channel flipped. Off when glitch_s < 0.
+    double glitch_s = -1.0;
+    std::uint32_t glitch_channel = 0u;
+    std::uint32_t glitch_bit = 19u;
     double lsb_radps() const;
 };
 

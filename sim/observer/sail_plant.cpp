@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace sim {
@@ -69,6 +70,15 @@ SensorFrame SailPlant::sense()
     std::array<std::int32_t, 2> cnt{};
     std::array<std::uint8_t, 2> st{};
     gyro_.sample({x_(kWy), x_(kWz)}, &cnt, &st);
+    if (sail_.gyro.glitch_s >= 0.0 && sail_.gyro.glitch_channel < 2u &&
+        seq_ == static_cast<std::uint32_t>(std::llround(sail_.gyro.glitch_s / scn_.h_s()))) {
+        // The flip acts on the count the sensor outputs (after its own range logic), so the
+        // sample stays in range and carries no status: only the flight code's own checks see it.
+        const std::uint32_t u = static_cast<std::uint32_t>(cnt[sail_.gyro.glitch_channel]) ^ (1u << sail_.gyro.glitch_bit);
+        std::int32_t v = 0;
+        std::memcpy(&v, &u, sizeof v);
+        cnt[sail_.gyro.glitch_channel] = v;
+    }
     for (std::size_t i = 0; i < 2u; ++i) {
         f.cnt[i] = cnt[i];
         f.status[i] = st[i];

@@ -89,6 +89,8 @@ static inline uint32_t gv_obs_table_fp(const obs_params_t *p)
     gv_dg_u32(&d, ((uint32_t)p->n_sat << 16) | (uint32_t)p->n_gap_max);
     gv_dg_i32(&d, p->d2_max_q16);
     gv_dg_u32(&d, (uint32_t)p->d2_reject);
+    gv_dg_u32(&d, ((uint32_t)p->n_rej_safe << 16) | (uint32_t)p->rej_leak_inc);
+    gv_dg_u32(&d, (uint32_t)p->rej_freeze_on);
     return d.crc;
 }
 

@@ -77,6 +77,10 @@ UT_TEST(bad_tables_are_refused_with_a_reason)
     p.n_gap_max = 0u;
     (void)obs_params_check(&p, &why);
     UT_UEQ(why, OBS_WHY_FAULT);
+    p = OBS_TBL_50HZ_PAPER;
+    p.rej_freeze_on = 0u;
+    (void)obs_params_check(&p, &why);
+    UT_UEQ(why, OBS_WHY_FAULT);
 }
 
 UT_TEST(init_gives_safe_outputs)
@@ -247,6 +251,155 @@ UT_TEST(kappa_stays_in_its_band)
     UT_LE(p.kappa_lo_q28, out.tlm.kappa_q28);
 }
 
+/* ---------------------------------------------------------------- innovation gate (README "Innovation gate") */
+
+#define GLITCH_CNT 524288      /* bit 19 of a count: 0.5 rad/s, in range (full scale 2^20 - 1) */
+#define STEADY_Y   2000        /* a steady body rate (1.9e-3 rad/s) the filter has settled on */
+
+/* A sample the filter finds plausible: its own prior rate estimate, in counts, plus 3 counts. A
+   fixed rate is not a motion of the model (the nutation is 51 rad/s), so it would be rejected. */
+static obs_in_t plausible(const obs_state_t *s, uint32_t seq)
+{
+    fx_status_t st = 0u;
+    return sample(seq, fx_rshift_sat((int64_t)s->x_q29[0], 9u, &st) + 3, fx_rshift_sat((int64_t)s->x_q29[1], 9u, &st) + 3);
+}
+
+/* Run p from init (first sample STEADY_Y, -STEADY_Y) over n plausible samples; returns the next seq. */
+static uint32_t settle(obs_state_t *s, const obs_params_t *p, obs_out_t *out, uint32_t n)
+{
+    uint32_t k;
+    obs_in_t in = sample(1u, STEADY_Y, -STEADY_Y);
+    (void)obs_init(s, p, out);
+    obs_step(s, p, &in, out);
+    for (k = 2u; k <= n; k++) {
+        in = plausible(s, k);
+        obs_step(s, p, &in, out);
+    }
+    return n + 1u;
+}
+
+/* A bit-19 glitch on y after 10 s of plausible samples: rejected and counted, and the state after
+   the step is bit-identical to the same step with y marked stale (prediction only, z updated):
+   the bound on what the rejected sample moved is 0 LSB. The same sample with the gate off moves
+   x-hat and kappa (so this test can fail). */
+UT_TEST(gate_rejects_a_wild_sample_and_counts_it)
+{
+    static obs_state_t s;
+    static obs_state_t twin;
+    static obs_state_t open;
+    obs_out_t out;
+    obs_out_t ot;
+    obs_params_t p_open = OBS_TBL_50HZ_PAPER;
+    const obs_params_t *p = &OBS_TBL_50HZ_PAPER;
+    uint32_t i;
+    uint32_t seq = settle(&s, p, &out, 500u);
+    obs_in_t in = plausible(&s, seq);
+    obs_in_t in_stale;
+    in.gyro_cnt[0] += GLITCH_CNT;
+    in_stale = in;
+    UT_UEQ(out.tlm.n_innov, 0u);                     /* the steady samples all pass */
+    twin = s;
+    open = s;
+    p_open.d2_reject = 0u;
+    obs_step(&s, p, &in, &out);
+    UT_UEQ(out.tlm.n_innov, 1u);
+    UT_TRUE((out.health & OBS_H_INNOV_HIGH) != 0u);
+    UT_TRUE((out.health & (OBS_H_ADAPT_FROZEN | OBS_H_INNOV_PERSIST)) == 0u);   /* one is no burst */
+    UT_TRUE(out.tlm.d2_q16[0] > p->d2_max_q16);
+    in_stale.stale = 1u;
+    obs_step(&twin, p, &in_stale, &ot);
+    for (i = 0u; i < OBS_NX; i++) {
+        UT_CHECK_EQ(s.x_q29[i], twin.x_q29[i]);
+    }
+    UT_EQ(s.kappa_q28, twin.kappa_q28);
+    for (i = 0u; i < (OBS_NZ * OBS_NZ); i++) {
+        UT_CHECK_EQ(s.p_q30[i], twin.p_q30[i]);
+    }
+    UT_EQ(out.bdot_cmd_cnt[0], ot.bdot_cmd_cnt[0]);
+    obs_step(&open, &p_open, &in, &ot);              /* monitor only: the sample is used */
+    UT_TRUE((ot.health & OBS_H_INNOV_HIGH) != 0u);
+    UT_TRUE(open.kappa_q28 != s.kappa_q28);
+    UT_TRUE(open.x_q29[0] != s.x_q29[0]);
+}
+
+/* n_rej_safe consecutive rejections of one channel latch the safe output at exactly the
+   n_rej_safe-th: INNOV_PERSIST (a mission fault bit), zero command, kappa frozen; good samples
+   afterwards do not release it, init does. */
+UT_TEST(persistent_rejection_latches_the_safe_output_after_exactly_n)
+{
+    static obs_state_t s;
+    obs_out_t out;
+    const obs_params_t *p = &OBS_TBL_50HZ_PAPER;
+    uint32_t seq = settle(&s, p, &out, 500u);
+    uint32_t k;
+    for (k = 1u; k <= p->n_rej_safe; k++) {
+        obs_in_t in = plausible(&s, seq);
+        in.gyro_cnt[0] -= GLITCH_CNT;
+        seq++;
+        obs_step(&s, p, &in, &out);
+        if (k < p->n_rej_safe) {
+            UT_CHECK_UEQ(out.health & OBS_H_INNOV_PERSIST, 0u);
+            UT_CHECK(out.bdot_cmd_cnt[0] != 0);
+        }
+    }
+    UT_UEQ(out.tlm.n_innov, p->n_rej_safe);
+    UT_TRUE((out.health & OBS_H_INNOV_PERSIST) != 0u);
+    UT_TRUE((out.health & OBS_H_ADAPT_FROZEN) != 0u);
+    UT_EQ(out.bdot_cmd_cnt[0], 0);
+    UT_EQ(out.bdot_cmd_cnt[1], 0);
+    UT_UEQ(obs_rej_persist_mask(&s, p), 1u);
+    for (k = 0u; k < 10u; k++) {                     /* latched */
+        obs_in_t in = plausible(&s, seq);
+        seq++;
+        obs_step(&s, p, &in, &out);
+        UT_CHECK((out.health & OBS_H_INNOV_PERSIST) != 0u);
+        UT_CHECK_EQ(out.bdot_cmd_cnt[0], 0);
+    }
+    (void)obs_init(&s, p, &out);
+    UT_UEQ(out.health & OBS_H_INNOV_PERSIST, 0u);
+}
+
+/* Freeze: with the shipped rej_leak_inc = 50, rej_freeze_on = 51, one rejection does not freeze;
+   a second 10 steps later brings the level to 50 - 9 + 50 = 91 and freezes; kappa and P_KK's
+   update then hold while x-hat keeps updating, and the freeze releases after exactly 91 clean
+   steps (the level drains by one per step). */
+UT_TEST(kappa_freeze_engages_on_a_burst_and_releases)
+{
+    static obs_state_t s;
+    obs_out_t out;
+    const obs_params_t *p = &OBS_TBL_50HZ_PAPER;
+    uint32_t seq = settle(&s, p, &out, 100u);   /* still adapting: kappa moves every step */
+    uint32_t k;
+    int32_t kap;
+    obs_in_t in = plausible(&s, seq++);
+    in.gyro_cnt[0] += GLITCH_CNT;
+    UT_UEQ(p->rej_leak_inc, 50u);
+    UT_UEQ(p->rej_freeze_on, 51u);
+    obs_step(&s, p, &in, &out);
+    UT_UEQ(out.health & OBS_H_ADAPT_FROZEN, 0u);
+    for (k = 0u; k < 9u; k++) {
+        in = plausible(&s, seq++);
+        obs_step(&s, p, &in, &out);
+        UT_CHECK_UEQ(out.health & OBS_H_ADAPT_FROZEN, 0u);
+    }
+    in = plausible(&s, seq++);
+    in.gyro_cnt[1] -= GLITCH_CNT;
+    obs_step(&s, p, &in, &out);
+    UT_TRUE((out.health & OBS_H_ADAPT_FROZEN) != 0u);
+    UT_UEQ(s.rej_level, 91u);
+    kap = s.kappa_q28;
+    for (k = 1u; k <= 91u; k++) {
+        in = plausible(&s, seq++);
+        obs_step(&s, p, &in, &out);
+        UT_CHECK_EQ(s.kappa_q28, kap);               /* frozen through the 91st update */
+        UT_CHECK_UEQ((out.health & OBS_H_ADAPT_FROZEN) != 0u, k < 91u);
+    }
+    in = plausible(&s, seq++);
+    obs_step(&s, p, &in, &out);
+    UT_TRUE(s.kappa_q28 != kap);                     /* released: adapting again */
+    UT_UEQ(out.tlm.n_innov, 2u);
+}
+
 /* Same inputs, same outputs, bit for bit (including on the target). */
 UT_TEST(deterministic)
 {
@@ -279,7 +432,9 @@ int main(void)
         UT_CASE(init_gives_safe_outputs), UT_CASE(waits_for_a_full_measurement_then_commands),
         UT_CASE(invalid_axes_are_skipped_and_counted), UT_CASE(sequence_gaps_and_stale_samples),
         UT_CASE(loss_of_measurements_then_reinit_keeps_kappa), UT_CASE(command_is_limited_as_a_vector),
-        UT_CASE(kappa_stays_in_its_band), UT_CASE(deterministic),
+        UT_CASE(kappa_stays_in_its_band), UT_CASE(gate_rejects_a_wild_sample_and_counts_it),
+        UT_CASE(persistent_rejection_latches_the_safe_output_after_exactly_n),
+        UT_CASE(kappa_freeze_engages_on_a_burst_and_releases), UT_CASE(deterministic),
     };
     return UT_RUN("obs", cases);
 }

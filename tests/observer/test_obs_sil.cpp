@@ -467,6 +467,50 @@ SIM_TEST(fault_nan_and_out_of_range_gyro)
     EXPECT_TRUE(r.plant.deterministic());
 }
 
+// A wild but in-range sample from the gyro itself: bit 19 of counts[0] flipped (0.5 rad/s, inside
+// the range check) at 74.8 s on S0-5. Before the innovation gate it drove K-hat from 0.0098 to its
+// 0.02 clamp and t_s to 120 s; now it is rejected and counted once, and the run settles as the
+// unfaulted one: t_s within 10 %, K-hat within 2 % (both measured identical to 1e-4).
+// Then the same glitch at pseudo-random times and channels (a reduced set of the README's 24).
+double glitch_time(std::uint64_t seed)
+{
+    std::uint64_t z = seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull;   // splitmix64 step
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return 0.02 * static_cast<double>(1u + (z % 5998u));   // a sample time in (0, 120) s
+}
+
+void expect_like_unfaulted(const sil::InprocResult &r, const sil::InprocResult &base)
+{
+    EXPECT_TRUE(!r.plant.diverged);
+    EXPECT_NEAR(obs(r).t_s, obs(base).t_s, 0.10 * obs(base).t_s);
+    EXPECT_NEAR(obs(r).k_hat_final, obs(base).k_hat_final, 0.02 * obs(base).k_hat_final);
+    EXPECT_EQ_INT(tlm(r, "obs_n_innov"), 1);                     // one rejection, counted
+    EXPECT_EQ_INT(tlm(r, "n_safe"), 0);
+    EXPECT_EQ_INT(tlm(r, "health_sticky") & 0xFF, 0);
+    EXPECT_TRUE((obs(r).obs_health_sticky & (OBS_H_INNOV_PERSIST | OBS_H_ADAPT_FROZEN)) == 0u);
+}
+
+SIM_TEST(fault_gyro_glitch_bit19)
+{
+    const sim::Scenario s0 = scn("s0-5_nominal_mpaper.yaml");
+    const auto base = run(s0, "glitch: none");
+    sim::Scenario s = s0;
+    sail(s).gyro.glitch_s = 74.8;
+    sail(s).gyro.glitch_channel = 0u;
+    sail(s).gyro.glitch_bit = 19u;
+    const auto r = run(s, "glitch: bit 19 of y at 74.8 s");
+    expect_like_unfaulted(r, base);
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        sail(s).gyro.glitch_s = glitch_time(seed);
+        sail(s).gyro.glitch_channel = static_cast<std::uint32_t>(seed & 1u);
+        char lab[64];
+        std::snprintf(lab, sizeof lab, "glitch: bit 19 ch %u at %.2f s", sail(s).gyro.glitch_channel, sail(s).gyro.glitch_s);
+        expect_like_unfaulted(run(s, lab), base);
+    }
+}
+
 std::vector<std::uint8_t> image(const char *name)
 {
     std::ifstream f(kImg + "/" + name, std::ios::binary);
@@ -550,6 +594,7 @@ int main(int argc, char **argv)
     const CMUnitTest faults[] = {cmocka_unit_test(fault_duplicated_frames), cmocka_unit_test(fault_reordered_frames),
                                  cmocka_unit_test(fault_truncated_and_bitflipped_frames),
                                  cmocka_unit_test(fault_nan_and_out_of_range_gyro),
+                                 cmocka_unit_test(fault_gyro_glitch_bit19),
                                  cmocka_unit_test(fault_corrupt_table_uploads),
                                  cmocka_unit_test(determinism_same_scenario_twice)};
     // The udpm entry: the nominal acceptance cases over a real multicast socket (one process,

@@ -79,9 +79,15 @@ class ObserverConfig(tc.Config):
     n_good: int = tc.key(HW.n_good, 1, 65535, "samples", "good samples in a row to recover")
     n_sat: int = tc.key(HW.n_sat, 1, 65535, "samples", "command-limited samples in a row before the flag")
     n_gap_max: int = tc.key(HW.n_gap_max, 1, 65535, "samples", "largest sequence gap bridged by prediction")
-    d2_max: float = tc.key(HW.d2_max, 0.0, 32767.0, "", "innovation test threshold (chi-square, 2 dof)",
-                           lo_open=True)
+    d2_max: float = tc.key(HW.d2_max, 0.0, 32767.0, "", "innovation gate gamma^2 on d^2 = e^2 / S per gyro "
+                           "channel (chi-square, 1 dof)", lo_open=True)
     d2_reject: bool = tc.key(bool(HW.d2_reject), doc="reject samples above d2_max (false: monitor only)")
+    n_rej_safe: int = tc.key(HW.n_rej_safe, 1, 65535, "samples",
+                             "gate rejections in a row on a channel before the observer's latched safe output")
+    rej_leak_inc: int = tc.key(HW.rej_leak_inc, 1, 65535, "samples",
+                               "leaky rejection level: added per rejected step (one drains per clean step)")
+    rej_freeze_on: int = tc.key(HW.rej_freeze_on, 1, 65535, "samples",
+                                "rejection level that freezes K-hat adaptation (until it drains to 0)")
 
     @property
     def sigma(self):
@@ -128,7 +134,9 @@ class ObserverConfig(tc.Config):
         return ctable.Hw(gyro_lsb_log2=-self.gyro_lsb_shift, act_lsb_log2=-self.gimbal_lsb_shift,
                          gyro_max_cnt=self.gyro_max_cnt, bdot_hw=self.gimbal_hw_limit_radps,
                          bdot_max=self.bdot_max_radps, n_lost=self.n_lost, n_good=self.n_good, n_sat=self.n_sat,
-                         n_gap_max=self.n_gap_max, d2_max=self.d2_max, d2_reject=int(self.d2_reject))
+                         n_gap_max=self.n_gap_max, d2_max=self.d2_max, d2_reject=int(self.d2_reject),
+                         n_rej_safe=self.n_rej_safe, rej_leak_inc=self.rej_leak_inc,
+                         rej_freeze_on=self.rej_freeze_on)
 
     def s_exp(self):
         if self.ekf_scale_log2 is not None:
@@ -178,7 +186,8 @@ SOURCES = {
     "kappa_lo_q28": ("k_hat_min_per_s2",), "kappa_hi_q28": ("k_hat_max_per_s2",), "r_q30": ("gyro_noise_radps",),
     "d2_max_q16": ("d2_max",), "ls": ("ekf_scale_log2",), "p0_q30": ("ekf_scale_log2", "k_hat0_per_s2"),
     "qd_q30": ("ekf_scale_log2",), "n_lost": ("n_lost",), "n_good": ("n_good",), "n_sat": ("n_sat",),
-    "n_gap_max": ("n_gap_max",),
+    "n_gap_max": ("n_gap_max",), "n_rej_safe": ("n_rej_safe",), "rej_leak_inc": ("rej_leak_inc",),
+    "rej_freeze_on": ("rej_freeze_on",),
 }
 for _f in ("q_phi0", "q_phik", "q_gam0", "q_gamk", "q_d", "q_w"):
     SOURCES[_f] = (DESIGN_KEYS,)

@@ -26,7 +26,13 @@ BDOT_HW = 0.35               # rad/s, hardware clip
 BDOT_MAX = 0.175             # rad/s, table default (10 deg/s)
 P_FLOOR = 64                 # LSB of q30 (6.0e-8)
 P_CEIL = 1.9                 # scaled covariance ceiling
-FAULT = dict(n_lost=5, n_good=5, n_sat=50, n_gap_max=10, d2_max=25.0, d2_reject=0)
+# Innovation gate (fsw/observer/README.md "Innovation gate"): gamma^2 = 2^14 (gamma = 128) sits
+# 8.8x above the largest d^2 of the acceptance runs (1864, S0-7 M-phys J x 1.05 transient; 21 in
+# the committed scenarios, 1e-5 rad/s noise), while a bit-19 glitch (0.5 rad/s) gives d^2 > 1e9.
+# 25 consecutive rejections (0.5 s) of a channel latch the observer's safe output; the leaky level
+# (+50 per rejected step, -1 per clean step) freezes kappa from 51, i.e. two rejections in 1 s.
+FAULT = dict(n_lost=5, n_good=5, n_sat=50, n_gap_max=10, d2_max=16384.0, d2_reject=1,
+             n_rej_safe=25, rej_leak_inc=50, rej_freeze_on=51)
 D2_Q = 16
 X_Q = 29
 KAPPA_Q = 28
@@ -51,6 +57,9 @@ class Hw:
     n_gap_max: int = FAULT["n_gap_max"]
     d2_max: float = FAULT["d2_max"]
     d2_reject: int = FAULT["d2_reject"]
+    n_rej_safe: int = FAULT["n_rej_safe"]
+    rej_leak_inc: int = FAULT["rej_leak_inc"]
+    rej_freeze_on: int = FAULT["rej_freeze_on"]
 
     def act_max_cnt(self):
         return int(self.bdot_hw * 2.0 ** -self.act_lsb_log2)
@@ -131,6 +140,8 @@ def table_c(name, sym, tab, hw=HW):
         lines.append("    .%s = %du," % (k, getattr(hw, k)))
     _scalar(lines, "d2_max_q16", hw.d2_max, D2_Q)
     lines.append("    .d2_reject = %du," % hw.d2_reject)
+    for k in ("n_rej_safe", "rej_leak_inc", "rej_freeze_on"):
+        lines.append("    .%s = %du," % (k, getattr(hw, k)))
     lines.append("    .revision = 1u,")
     lines.append("};")
     return "\n".join(lines) + "\n"

@@ -9,9 +9,9 @@ as table_c does) and cross-checks every field against the initialiser text table
 They are packed here with Python struct, independently of the C encoder, in the wire layout
 documented in fsw/observer/obs_table.c (spec 00 §3.2, 10-observer §4.6):
 
-    header  <HHIII  table_id 0x0B01, layout_version 1, payload length 646, revision,
+    header  <HHIII  table_id 0x0B01, layout_version 2, payload length 652, revision,
                     zlib.crc32(payload)
-    payload 646 bytes, little-endian, field by field (PAYLOAD below)
+    payload 652 bytes, little-endian, field by field (PAYLOAD below)
 
 `--set FIELD=INT` replaces one field by its obs_params_t name with a raw integer before the CRC
 (`FIELD[i]=INT` for one entry of a vector/matrix). Header pseudo-fields `hdr.table_id`,
@@ -26,8 +26,8 @@ from . import ctable
 from . import design as dz
 
 TABLE_ID = 0x0B01
-LAYOUT_VERSION = 1
-PAYLOAD_BYTES = 646
+LAYOUT_VERSION = 2
+PAYLOAD_BYTES = 652
 NX, NZ, NU, NY = 6, 7, 2, 2
 EST = {"OBS_EST_EKF": 0, "OBS_EST_CONST_W": 2}
 
@@ -52,6 +52,7 @@ PAYLOAD = [
     ("ls", "i", NZ, -40, 40), ("p0_q30", "i", NZ, 1, I32MAX), ("qd_q30", "i", NZ, 4, I32MAX),
     ("phi0", "i", NX * NX), ("phik", "i", NX * NX), ("gam0", "i", NX * NU), ("gamk", "i", NX * NU),
     ("d", "i", NU * NX), ("w", "i", NZ * NY),
+    ("n_rej_safe", "H", 1, 1, 65535), ("rej_leak_inc", "H", 1, 1, 65535), ("rej_freeze_on", "H", 1, 1, 65535),
 ]
 # value[a] + margin <= value[b] (OBS_RELS)
 RELS = [("bdot_max_q29", "bdot_hw_q29", 0), ("kappa_lo_q28", "kappa_hi_q28", 1), ("kappa_lo_q28", "kappa0_q28", 0),
@@ -102,7 +103,7 @@ def _from_design(tab, hw=ctable.HW):
         p["r_q30"] = int(ekf["R_scaled_int32"][0])
     p["p_floor_q30"] = hw.p_floor
     p["p_ceil_q30"] = ctable.q_int(hw.p_ceil, ctable.P_Q)
-    for k in ("n_lost", "n_good", "n_sat", "n_gap_max"):
+    for k in ("n_lost", "n_good", "n_sat", "n_gap_max", "n_rej_safe", "rej_leak_inc", "rej_freeze_on"):
         p[k] = int(getattr(hw, k))
     p["d2_max_q16"] = ctable.q_int(hw.d2_max, ctable.D2_Q)
     p["d2_reject"] = int(hw.d2_reject)

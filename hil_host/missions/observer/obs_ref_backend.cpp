@@ -66,6 +66,11 @@ bool RefObsBackend::step(const Frame &f, StepOutput &out)
         if (limited_run_ >= p_.n_sat) { oh |= OBS_H_CMD_LIMIT_PERSIST; }
         if (st_.kappa <= t_.kappa_lo) { oh |= OBS_H_K_CLAMP_LO; ++t.m.detumble.n_clamp_lo; }
         if (st_.kappa >= t_.kappa_hi) { oh |= OBS_H_K_CLAMP_HI; ++t.m.detumble.n_clamp_hi; }
+        for (int c = 0; c < 2; ++c) {
+            if (o.d2[static_cast<std::size_t>(c)] > t_.d2_max) { oh |= OBS_H_INNOV_HIGH; ++t.m.detumble.n_innov; }
+        }
+        if (st_.kappa_frozen) { oh |= OBS_H_ADAPT_FROZEN; }
+        if (st_.rej_safe) { oh |= OBS_H_INNOV_PERSIST | OBS_H_ADAPT_FROZEN; }
     } else {
         oh |= init_ ? OBS_H_MEAS_SKIP : OBS_H_NOT_INIT;   // held command is the plant's business
     }
