@@ -391,6 +391,19 @@ void fsw_step(fsw_t *f, const fsw_in_t *in, fsw_out_t *out)
             if ((mod_h & d->fault_bits) != 0u) {
                 hx |= FSW_H_MODULE;
             }
+            if ((mod_h & d->safe_bits) != 0u) {
+                /* The module's own persistence rule fired: its output is not to be flown. SAFE
+                   from this step on (left only by command; re-entering the mission mode
+                   re-initialises the module), and this step already commands the safe values. */
+                uint32_t i;
+                for (i = 0u; i < d->n_act; i++) {
+                    out->act_cnt[i] = d->safe_act[i];
+                }
+                mode = FSW_MODE_SAFE;
+                f->mode = mode;
+                fx_cnt_inc(&f->tlm.n_safe);
+                hx |= FSW_H_MODULE_SAFE | FSW_H_SAFE;
+            }
         } else if (mode == FSW_MODE_SAFE) {
             hx |= FSW_H_SAFE;
         } else {

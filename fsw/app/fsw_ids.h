@@ -24,6 +24,7 @@
 #define FSW_H_NO_TABLE               (0x00020000u)  /* no valid module table (boot table refused) */
 #define FSW_H_TC_REJ                 (0x00040000u)  /* a telecommand was refused this step (unknown, other mission, wrong mode) */
 #define FSW_H_TBL_PENDING            (0x00080000u)  /* a validated table waits for the mission's commit rule */
+#define FSW_H_MODULE_SAFE            (0x00100000u)  /* the module reported a fault it judged persistent (its safe_bits): SAFE */
 
 /* Per-channel status bits of fsw_in_t.status. */
 #define FSW_ST_STALE                 (0x00000001u)  /* the plant marks the sample stale */

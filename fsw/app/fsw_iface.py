@@ -26,6 +26,7 @@ HEALTH = [
     Bit("NO_TABLE", 0x00020000, "no valid module table (boot table refused)"),
     Bit("TC_REJ", 0x00040000, "a telecommand was refused this step (unknown, other mission, wrong mode)"),
     Bit("TBL_PENDING", 0x00080000, "a validated table waits for the mission's commit rule"),
+    Bit("MODULE_SAFE", 0x00100000, "the module reported a fault it judged persistent (its safe_bits): SAFE"),
 ]
 
 # Per-channel status bits of fsw_in_t.status (the bridge maps the plant's sensor_frame_v2_t bits).

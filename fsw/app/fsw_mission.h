@@ -65,6 +65,9 @@ typedef struct {
     uint32_t n_act;                  /* actuator channels driven, counts[0..n_act) */
     uint32_t flags;                  /* FSW_MIS_* */
     uint32_t fault_bits;             /* module health bits that raise FSW_H_MODULE */
+    uint32_t safe_bits;              /* module health bits that send the executive to SAFE: faults the
+                                        module itself judged persistent (its own persistence rule),
+                                        so the step that reports one already flies safe_act */
     uint32_t tc_max;                 /* telecommand local ids 1..tc_max exist */
     uint32_t tlm_layout;             /* telemetry layout version */
     uint32_t tlm_bytes;              /* bytes of the whole encoded telemetry */

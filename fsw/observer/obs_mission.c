@@ -6,11 +6,9 @@
  * CMD_LIMIT_PERSIST is reported, not a SAFE trigger: with insufficient authority the spec's
  * scenario (10-observer S0-9) expects the loop to keep commanding and the plant to end DIVERGED.
  * INNOV_PERSIST (a gyro channel failing the innovation gate n_rej_safe times in a row) is a fault
- * bit: the observer latches its own safe output (zero command, kappa frozen) until the mode is
- * re-entered, and the executive reports FSW_H_MODULE. It cannot raise the executive's SAFE
- * itself: the only automatic SAFE rule a mission declares is a channel invalid for stale_max
- * steps, judged on the range this adapter returns from a const query (fsw_mission.h) that cannot
- * lift a veto once the mode has left, so a vetoed channel would hold the executive in SAFE.
+ * bit and the mission's safe_bits: the observer latches its own safe output (zero command, kappa
+ * frozen), and the executive goes to SAFE at that step (FSW_H_MODULE_SAFE), left only by command;
+ * re-entering DETUMBLE re-initialises the observer and clears the latch.
  * Commit rule: a validated table becomes active at the next step boundary; the covariance lives in
  * the table's scaled coordinates, so a new scale vector restarts the observer when it is flying.
  */
@@ -24,7 +22,7 @@ FX_STATIC_ASSERT(obs_mis_sa_tlm, OBS_TLM_TOTAL_BYTES == (FSW_TLM_HEAD_BYTES + (4
 static const int32_t OBS_SAFE_ACT[OBS_N_ACT] = {0, 0};
 
 const fsw_mis_desc_t OBS_MIS_DESC = {
-    OBS_N_SENS, OBS_N_ACT, FSW_MIS_STALE_SAFE | FSW_MIS_SAT_SAFE, OBS_FAULT_BITS, OBS_CMD_MAX,
+    OBS_N_SENS, OBS_N_ACT, FSW_MIS_STALE_SAFE | FSW_MIS_SAT_SAFE, OBS_FAULT_BITS, OBS_H_INNOV_PERSIST, OBS_CMD_MAX,
     OBS_TLM_LAYOUT, OBS_TLM_TOTAL_BYTES,
     &OBS_TBL_DESC, OBS_SAFE_ACT,
 };

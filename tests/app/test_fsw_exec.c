@@ -296,6 +296,56 @@ UT_TEST(fx_status_is_reported_and_commands_stay_limited)
     UT_UEQ(g_oa.tlm.n_safe, 0u);
 }
 
+/* A fault the module judged persistent is a SAFE trigger (fsw_mis_desc_t.safe_bits): the same
+   stuck gyro with the innovation gate on fails the gate on every step (a fixed rate is no motion
+   of the model); after n_rej_safe rejections in a row the observer raises INNOV_PERSIST and the
+   executive goes to SAFE at that very step, commanding the safe values. SAFE holds without a
+   command; STANDBY then DETUMBLE by command re-initialises the observer (latch cleared), which
+   then flies consistent data in DETUMBLE again. */
+UT_TEST(persistent_innovation_rejection_goes_to_safe)
+{
+    static obs_params_t p5;
+    fsw_cfg_t c = cfg50();
+    fsw_in_t in;
+    int64_t k;
+    int64_t k_safe = -1;
+    c.period_us = 200000u;
+    c.stale_max = 5u;
+    p5 = OBS_TBL_5HZ_PAPER;
+    UT_TRUE(p5.d2_reject != 0u);
+    UT_UEQ(boot_obs(&g_a, &c, &p5, 1u), FSW_OK);
+    for (k = 1; k <= 100; k++) {
+        in = frame(k, CNT_1DEG_S, CNT_1DEG_S);
+        fsw_step(&g_a, &in, &g_oa);
+        if ((k_safe < 0) && (g_oa.mode == FSW_MODE_SAFE)) {
+            k_safe = k;
+            UT_CHECK((g_oa.health & FSW_H_MODULE_SAFE) != 0u);
+            UT_CHECK((g_oa.tlm.mod_health & OBS_H_INNOV_PERSIST) != 0u);
+            UT_CHECK((g_oa.act_cnt[0] == 0) && (g_oa.act_cnt[1] == 0));
+        }
+    }
+    /* the first step initialises; then n_rej_safe consecutive rejections on a channel */
+    UT_TRUE(k_safe >= (int64_t)p5.n_rej_safe + 1);
+    UT_UEQ(g_oa.mode, FSW_MODE_SAFE);
+    UT_UEQ(g_oa.tlm.n_safe, 1u);
+    UT_TRUE((g_oa.health & FSW_H_SAFE) != 0u);
+    in = frame(101, 0, 0);
+    in.mode_cmd = FSW_MODE_STANDBY;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_STANDBY);
+    in = frame(102, 0, 0);
+    in.mode_cmd = FSW_MODE_DETUMBLE;
+    fsw_step(&g_a, &in, &g_oa);
+    UT_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+    for (k = 103; k <= 160; k++) {
+        in = frame(k, 0, 0);   /* a spacecraft at rest: consistent with the model */
+        fsw_step(&g_a, &in, &g_oa);
+        UT_CHECK_UEQ(g_oa.mode, FSW_MODE_DETUMBLE);
+        UT_CHECK((g_oa.tlm.mod_health & OBS_H_INNOV_PERSIST) == 0u);
+    }
+    UT_UEQ(g_oa.tlm.n_safe, 1u);
+}
+
 /* Runs a and b on the same inputs; b gets `img` uploaded between steps 20 and 21. */
 static void run_pair_with_upload(const uint8_t *img, uint32_t n, uint32_t rev, fsw_rc_t *rc,
                                  uint32_t *why)
@@ -439,6 +489,7 @@ UT_TEST(deterministic_and_instances_independent)
    except for the table counters. NULL with a length is still an argument error. */
 UT_TEST(tableless_boot_waits_for_an_upload)
 {
+    static obs_params_t pm;
     fsw_cfg_t c = cfg50();
     fsw_range_t r[FSW_IN_MAX];
     uint32_t n = 0u;
@@ -459,10 +510,14 @@ UT_TEST(tableless_boot_waits_for_an_upload)
     UT_UEQ(g_oa.tlm.n_tbl_rej, 0u);
     UT_EQ(g_oa.act_cnt[0], 0);
     /* the upload before step 1: commit at its boundary, DETUMBLE from step 1 */
-    len = obs_table_encode(&OBS_TBL_50HZ_PHYS, 4u, g_img, sizeof(g_img));
+    /* gate in monitor mode: the synthetic ramps below are no motion of the model and would trip
+       the innovation persistence rule (its own test above); this test is about the commit */
+    pm = OBS_TBL_50HZ_PHYS;
+    pm.d2_reject = 0u;
+    len = obs_table_encode(&pm, 4u, g_img, sizeof(g_img));
     UT_UEQ(fsw_init(&g_a, &c, NULL, 0u), FSW_OK);
     UT_UEQ(upload(&g_a, g_img, len, 4u, 64u, &why), FSW_OK);
-    UT_UEQ(boot_obs(&g_b, &c, &OBS_TBL_50HZ_PHYS, 4u), FSW_OK);
+    UT_UEQ(boot_obs(&g_b, &c, &pm, 4u), FSW_OK);
     for (k = 1; k <= 100; k++) {
         in = frame(k, CNT_1DEG_S - (int32_t)(k * 53), CNT_1DEG_S + (int32_t)(k * 11));
         fsw_step(&g_a, &in, &g_oa);
@@ -490,6 +545,7 @@ int main(void)
         UT_CASE(invalid_channels_hold_the_last_good_value_and_are_counted),
         UT_CASE(persistent_stale_and_sat_go_to_safe_with_zero_command),
         UT_CASE(fx_status_is_reported_and_commands_stay_limited),
+        UT_CASE(persistent_innovation_rejection_goes_to_safe),
         UT_CASE(table_upload_accepted_at_the_step_boundary),
         UT_CASE(corrupt_or_vetoed_tables_are_refused_and_nothing_is_lost),
         UT_CASE(scrub_failure_goes_to_safe),

@@ -18,7 +18,9 @@ FX_STATIC_ASSERT(@prefix@_mis_sa_tlm,
 static const int32_t @PREFIX@_SAFE_ACT[@PREFIX@_N_ACT] = {0};
 
 const fsw_mis_desc_t @PREFIX@_MIS_DESC = {
-    @PREFIX@_N_SENS, @PREFIX@_N_ACT, FSW_MIS_STALE_SAFE | FSW_MIS_SAT_SAFE, @PREFIX@_FAULT_BITS, @PREFIX@_CMD_MAX,
+    @PREFIX@_N_SENS, @PREFIX@_N_ACT, FSW_MIS_STALE_SAFE | FSW_MIS_SAT_SAFE, @PREFIX@_FAULT_BITS,
+    0u,   /* safe_bits: the module health bits its own persistence rule raises, which send the executive to SAFE */
+    @PREFIX@_CMD_MAX,
     @PREFIX@_TLM_LAYOUT, @PREFIX@_TLM_TOTAL_BYTES,
     &@PREFIX@_TBL_DESC, @PREFIX@_SAFE_ACT,
 };
