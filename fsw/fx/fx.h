@@ -201,17 +201,31 @@ typedef struct {
 void     fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                   uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
 
+/* Caller-owned workspace of fx_solve_fast: the eliminated system kept in int32 in the caller's
+   own formats (no scaling, no guard bits), so its elimination is one 32 x 32 product per update. */
+typedef struct {
+    int32_t a[FX_SOLVE_NMAX * FX_SOLVE_NMAX];  /* eliminated matrix U (upper triangle), qa */
+    int32_t b[FX_SOLVE_NMAX];                  /* eliminated right-hand side, qb */
+    fx_recip_t rec[FX_SOLVE_NMAX];             /* pivot k (rec[k].d, qa) and its reciprocal */
+    uint8_t perm[FX_SOLVE_NMAX];               /* perm[k]: original row used at step k */
+} fx_solve_fast_ws_t;
+
 /*
- * Fast solve for iterations that only need a step of small *relative* error (Newton steps):
- * the same arguments, workspace, argument checks, pivoting, SINGULAR rule and saturation flags
- * as fx_solve, and the same elimination bit for bit (ws->a, ws->b, ws->rec, ws->pm, ws->pe,
- * ws->perm equal fx_solve's) and the same exact numerator s_i. Only the last step differs:
- * x_i = s_i / u_ii is taken from the pivot's reciprocal with one product and one rounding (no
- * residual fix-up, not correctly rounded): |x_i - s_i / u_ii| <= (1.5 2^-30 + 2^-61) |s_i / u_ii|
- * + 1/2 LSB. Error bound (tested): |x - x_exact| <= 2 n kappa_inf(A) (1 + 2^-29 |x_exact|inf) LSB
- * of qx, |x|inf in LSB.
+ * Fast solve for iterations that only need a step of small *relative* error (Newton steps): the
+ * same arguments, argument checks, pivoting (ties to the lowest row), SINGULAR rule and x zeroing
+ * as fx_solve, but its own int32 elimination: the multiplier l = a_ik / a_kk is taken in q30 from
+ * the pivot's reciprocal (|l^ - l| <= 1.5 2^-30), every updated a_ij and b_i is rounded to one
+ * LSB of qa / qb, and x_i = s_i / u_ii is one product with the reciprocal and one rounding
+ * (relative error <= 1.5 2^-30 + 2^-61, plus 1/2 LSB). An updated entry or an x_i outside int32,
+ * or an int64 overflow of the back substitution's sum, raises SAT_HI/SAT_LO or ACC_OVF.
+ * Error bound (derived in fsw/fx/README.md, "fx_solve_fast"; tested over mixed scales), with no
+ * status flag raised, x the returned solution, N = |A|inf in LSB of qa, e = qa + qx - qb and
+ * kappa = kappa_inf(A):
+ *   |x - x_exact|inf <= kappa (2 n (1 + 2^-27 |x|inf) + (n (n-1)/4 |x|inf + (n-1)/2 2^e + n^3/8) / N)
+ * LSB of qx. The |x|/N term is the rounding of U to one LSB of qa: it grows with |x| in LSB of
+ * qx over |A| in LSB of qa, so use fx_solve wherever the solution itself is the answer.
  */
-void     fx_solve_fast(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+void     fx_solve_fast(fx_solve_fast_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                        uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
 
 /* ---------------------------------------------------------------- integrity */

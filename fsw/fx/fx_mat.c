@@ -9,6 +9,7 @@
 
 /* Powers of two used as int64 scale factors (written out: no signed value is ever shifted). */
 #define P2_29_I64 INT64_C(536870912)        /* 2^29 */
+#define P2_30_I64 INT64_C(1073741824)       /* 2^30 */
 #define P2_60_I64 INT64_C(1152921504606846976)   /* 2^60 */
 
 /*
@@ -448,8 +449,8 @@ static bool pivot_step(fx_solve_ws_t *ws, uint32_t n, uint32_t k, int32_t pivot_
     return ok;
 }
 
-/* fx_solve's and fx_solve_fast's shared part: argument checks, the normalised int64 copy into
-   ws, pivoting and elimination; false (and x zeroed) on ARG or SINGULAR. */
+/* fx_solve's argument checks, the normalised int64 copy into ws, pivoting and elimination;
+   false (and x zeroed) on ARG or SINGULAR. */
 static bool factor(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                    uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
@@ -525,8 +526,8 @@ static uint64_t fix_quot(uint64_t ms_lo, uint64_t ud, uint64_t x0)
 
 /* |s| / |u| for pivot ii: 0 below 1/2, UINT64_MAX at 2^32 or more (from bit lengths), else x0
    from the 62 leading bits of |s| and pm (relative error <= 1.5 2^-30 + 2^-61), corrected to the
-   rounded quotient unless fast. */
-static uint64_t quot_mag(const fx_solve_ws_t *ws, uint32_t ii, u128_t ms, uint64_t ud, bool fast)
+   rounded quotient. */
+static uint64_t quot_mag(const fx_solve_ws_t *ws, uint32_t ii, u128_t ms, uint64_t ud)
 {
     uint32_t bd = bitlen64(ud);
     uint32_t bs = (ms.hi != 0u) ? (64u + bitlen64(ms.hi)) : bitlen64(ms.lo);
@@ -541,7 +542,7 @@ static uint64_t quot_mag(const fx_solve_ws_t *ws, uint32_t ii, u128_t ms, uint64
         uint64_t sn = (bs > 62u) ? shr128_rnd(ms, bs - 62u) : (ms.lo << (62u - bs));
         uint32_t shq = (122u + (uint32_t)ws->pe[ii]) - bs;
         q = shr128_rnd(umul64x32(sn, (uint64_t)(uint32_t)ws->pm[ii]), shq);
-        if ((!fast) && (q <= ((uint64_t)1 << 32))) {
+        if (q <= ((uint64_t)1 << 32)) {
             q = fix_quot(ms.lo, ud, q);               /* beyond 2^32: saturated either way */
         }
     }
@@ -550,7 +551,7 @@ static uint64_t quot_mag(const fx_solve_ws_t *ws, uint32_t ii, u128_t ms, uint64
 
 /* x_i = s_i / u_ii bottom up, saturated to int32 with SAT_HI / SAT_LO. */
 static void back_substitute(const fx_solve_ws_t *ws, uint32_t n, uint32_t qa, uint32_t qb, uint32_t qx,
-                            bool fast, int32_t *x, fx_status_t *st)
+                            int32_t *x, fx_status_t *st)
 {
     uint32_t k;
     int32_t g = ((int32_t)qa + (int32_t)qx) - (int32_t)qb + (int32_t)ws->sa - (int32_t)ws->sb;
@@ -561,7 +562,7 @@ static void back_substitute(const fx_solve_ws_t *ws, uint32_t n, uint32_t qa, ui
         bool sneg = (s.hi >> 63) != 0u;
         bool uneg = u < 0;
         bool neg = sneg != uneg;
-        uint64_t q = quot_mag(ws, ii, sneg ? neg128(s) : s, mag64(u), fast);
+        uint64_t q = quot_mag(ws, ii, sneg ? neg128(s) : s, mag64(u));
         uint64_t lim = neg ? ((uint64_t)INT32_MAX + 1u) : (uint64_t)INT32_MAX;
         if (q > lim) {
             *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
@@ -577,18 +578,189 @@ void fx_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b
               uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
     if (factor(ws, a, qa, b, qb, n, x, qx, pivot_min, st)) {
-        back_substitute(ws, n, qa, qb, qx, false, x, st);
+        back_substitute(ws, n, qa, qb, qx, x, st);
     }
 }
 
+/* ------------------------------------------------------------------------- fast solve */
+
 /*
- * fx_solve_fast: fx_solve's factor() (the same elimination) and the same exact numerator; x_i is
- * the reciprocal's quotient x0 (one product, one rounding) without the residual fix-up.
+ * fx_solve_fast: the int32 elimination and back substitution fx_solve used before its exact
+ * elimination, on its own workspace. Its error grows with |x| (LSB of qx) over |A| (LSB of qa)
+ * because every updated a_ij is rounded to one LSB of qa; the bound in fx.h, derived in
+ * fsw/fx/README.md, states that. Newton needs only a step of small relative error, and this path
+ * costs a quarter of the exact one at n = 4.
  */
-void fx_solve_fast(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+
+/* Partial pivoting for column k: swap the row with the largest |a_ik| (lowest index on ties)
+   into row k. Returns that magnitude. */
+static uint32_t pivot_rows_fast(fx_solve_fast_ws_t *ws, uint32_t n, uint32_t k)
+{
+    uint32_t p = k;
+    uint32_t best = fx_uabs(ws->a[(k * n) + k]);
+    uint32_t i;
+    for (i = k + 1u; i < n; i++) {
+        uint32_t v = fx_uabs(ws->a[(i * n) + k]);
+        if (v > best) {
+            best = v;
+            p = i;
+        }
+    }
+    if (p != k) {
+        uint32_t j;
+        for (j = 0u; j < n; j++) {
+            int32_t t = ws->a[(k * n) + j];
+            ws->a[(k * n) + j] = ws->a[(p * n) + j];
+            ws->a[(p * n) + j] = t;
+        }
+        {
+            int32_t t = ws->b[k];
+            ws->b[k] = ws->b[p];
+            ws->b[p] = t;
+        }
+    }
+    ws->perm[k] = (uint8_t)p;
+    return best;
+}
+
+/* Eliminate column k below the pivot using its reciprocal ws->rec[k]. The multiplier
+   l = a_ik / a_kk in q30 comes straight from the reciprocal (|l^ - l| <= 2^-30 |l| + 2^-31, |l| <= 1
+   by pivoting): the rounding of the updates dominates, so an exact fix-up would buy nothing here.
+   Each a_ij - l a_kj is formed exactly at 30 extra bits and rounded once (<= 1/2 LSB of qa, the
+   backward error the README's bound counts); the inline rounding keeps the hot loop free of calls. */
+static void eliminate_fast(fx_solve_fast_ws_t *ws, uint32_t n, uint32_t k, fx_status_t *st)
+{
+    uint32_t i;
+    uint32_t j;
+    const int32_t *ak = &ws->a[(size_t)k * n];
+    int32_t rm = ws->rec[k].m;
+    uint32_t lsh = 30u - ws->rec[k].sh;
+    for (i = k + 1u; i < n; i++) {
+        int32_t *ai = &ws->a[(size_t)i * n];
+        /* |l| <= 2^30 + 1 (|a_ik| <= |pivot|, m rounded): held in int32 so each product is one
+           32 x 32 multiply */
+        int32_t l = (int32_t)fx_shr_rnd64_i((int64_t)ai[k] * (int64_t)rm, lsh, st);
+        ai[k] = 0;
+        for (j = k + 1u; j < n; j++) {
+            int64_t v = ((int64_t)ai[j] * P2_30_I64) - ((int64_t)l * (int64_t)ak[j]);
+            ai[j] = fx_rshift_sat_i(v, 30u, st);
+        }
+        {
+            int64_t v = ((int64_t)ws->b[i] * P2_30_I64) - ((int64_t)l * (int64_t)ws->b[k]);
+            ws->b[i] = fx_rshift_sat_i(v, 30u, st);
+        }
+    }
+}
+
+/* Argument checks, the copy into ws, pivoting and elimination; false (and x zeroed) on ARG or
+   SINGULAR. The SINGULAR rule is fx_solve's: on int32 pivots "below 1/2 LSB" is "zero" and the
+   exact pivot is the pivot. Back substitution scales b from qb to qa + qx, so e <= 31. */
+static bool factor_fast(fx_solve_fast_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+                        uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
+{
+    uint32_t i;
+    uint32_t k;
+    bool fail = false;
+    if ((n < 1u) || (n > FX_SOLVE_NMAX) || (qa > FX_Q_MAX) || (qb > FX_Q_MAX) || (qx > FX_Q_MAX) ||
+        (qb > (qa + qx)) || ((qa + qx - qb) > 31u)) {
+        *st |= FX_ST_ARG;
+        fail = true;
+    } else {
+        for (i = 0u; i < (n * n); i++) {
+            ws->a[i] = a[i];
+        }
+        for (i = 0u; i < n; i++) {
+            ws->b[i] = b[i];
+        }
+    }
+    for (k = 0u; (!fail) && (k < n); k++) {
+        uint32_t best = pivot_rows_fast(ws, n, k);
+        if ((best == 0u) || ((int64_t)best < (int64_t)pivot_min)) {
+            *st |= FX_ST_SINGULAR;
+            ws->rec[k].d = ws->a[(k * n) + k];
+            fail = true;
+        } else {
+            fx_recip_init(&ws->rec[k], ws->a[(k * n) + k], st);
+            eliminate_fast(ws, n, k, st);
+        }
+    }
+    if (fail) {
+        for (i = 0u; (i < n) && (i < FX_SOLVE_NMAX); i++) {
+            x[i] = 0;
+        }
+    }
+    return !fail;
+}
+
+/* Number of bits of h (0 for 0), for h <= 2^33: 33 above 32 bits, else a bounded binary search
+   on 32-bit words (a 64-bit variable shift costs ~15 instructions on Cortex-M3). */
+static uint32_t bitlen34(uint64_t h)
+{
+    uint32_t t = 33u;
+    if ((h >> 32) == 0u) {
+        uint32_t v = (uint32_t)h;
+        uint32_t step = 16u;
+        uint32_t i;
+        t = 0u;
+        for (i = 0u; i < 5u; i++) {
+            if ((v >> step) != 0u) {
+                v >>= step;
+                t += step;
+            }
+            step >>= 1;
+        }
+        t += v;
+    }
+    return t;
+}
+
+/*
+ * x ~= s / d from the reciprocal r of d (1/d = m 2^(sh - 60)): s is rounded to 31 significant
+ * bits (s_hi = rnd(s / 2^t), |s_hi| in [2^30, 2^31] when t > 0), then x = rnd(s_hi m / 2^(60 - sh
+ * - t)). Relative error <= 2^-30 (m) + 2^-31 (s_hi) + 2^-61 before the final rounding (1/2 LSB).
+ * Saturates with SAT_HI / SAT_LO outside int32.
+ */
+static int32_t quot_fast(int64_t s, const fx_recip_t *r, fx_status_t *st)
+{
+    uint64_t u = (s < 0) ? ((uint64_t)0 - (uint64_t)s) : (uint64_t)s;
+    uint32_t t = bitlen34(u >> 31);
+    int32_t sh_r = 60 - (int32_t)r->sh - (int32_t)t;
+    int32_t x;
+    fx_status_t ignore = 0u;   /* t <= 33, sh_r in [28, 60] below: shifts in range */
+    if ((t > 0u) && (sh_r < 28)) {
+        /* |s_hi| >= 2^30 and |m| >= 2^29: |x| >= 2^59 / 2^27 = 2^32 */
+        bool neg = (s < 0) != (r->m < 0);
+        *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
+        x = neg ? INT32_MIN : INT32_MAX;
+    } else {
+        int64_t s_hi = fx_shr_rnd64_i(s, t, &ignore);
+        x = fx_rshift_sat_i(s_hi * (int64_t)r->m, (uint32_t)sh_r, st);
+    }
+    return x;
+}
+
+/* x_i = (b_i 2^e - sum_{j>i} a_ij x_j) / a_ii, the sum exact in int64, bottom up. */
+static void back_substitute_fast(const fx_solve_fast_ws_t *ws, uint32_t n, uint32_t b_shift, int32_t *x,
+                                 fx_status_t *st)
+{
+    uint32_t k;
+    int64_t scale = fx_pow2_64(b_shift, st);
+    for (k = 0u; k < n; k++) {
+        uint32_t ii = n - 1u - k;
+        const int32_t *ai = &ws->a[(size_t)ii * n];
+        uint32_t j;
+        int64_t s = (int64_t)ws->b[ii] * scale;
+        for (j = ii + 1u; j < n; j++) {
+            s = fx_add64_sat_i(s, -((int64_t)ai[j] * (int64_t)x[j]), st);
+        }
+        x[ii] = quot_fast(s, &ws->rec[ii], st);
+    }
+}
+
+void fx_solve_fast(fx_solve_fast_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                    uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st)
 {
-    if (factor(ws, a, qa, b, qb, n, x, qx, pivot_min, st)) {
-        back_substitute(ws, n, qa, qb, qx, true, x, st);
+    if (factor_fast(ws, a, qa, b, qb, n, x, qx, pivot_min, st)) {
+        back_substitute_fast(ws, n, (qa + qx) - qb, x, st);
     }
 }

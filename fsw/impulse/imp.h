@@ -199,7 +199,7 @@ typedef struct {
 
 /* Caller-owned solver workspace (no function needs a large stack frame). */
 typedef struct {
-    fx_solve_ws_t sws;
+    fx_solve_fast_ws_t sws;        /* Newton's solve: the int32 fast path (relative error suffices) */
     int32_t j_q26[16];             /* Jacobian, row-major n x n */
     int32_t f_q28[4];              /* residual */
     int32_t d_q29[4];              /* Newton step */

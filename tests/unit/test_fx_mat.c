@@ -297,7 +297,8 @@ UT_TEST(dot_acc_and_shl64)
 /* fx_solve_fast: exact cases, guards and argument checks as fx_solve. */
 UT_TEST(solve_fast_exact_cases)
 {
-    fx_solve_ws_t ws;
+    fx_solve_fast_ws_t ws;
+    fx_solve_ws_t wse;
     int32_t x[4];
     fx_status_t st = 0u;
     static const int32_t p4[16] = {0, 0, 1 << 28, 0, 1 << 28, 0, 0, 0, 0, 0, 0, 1 << 28, 0, 1 << 28, 0, 0};
@@ -350,14 +351,16 @@ UT_TEST(solve_fast_exact_cases)
         UT_UEQ(st, FX_ST_SAT_LO);
         UT_EQ(x[0], INT32_MIN);
         st = 0u;
-        fx_solve(&ws, tiny, 28u, nbig, 28u, 1u, x, 28u, 1 << 18, &st);
+        fx_solve(&wse, tiny, 28u, nbig, 28u, 1u, x, 28u, 1 << 18, &st);
         UT_UEQ(st, FX_ST_SAT_LO);
     }
 }
 
-/* fx_solve_fast runs fx_solve's elimination bit for bit (pivots, reciprocals, permutation, the
-   eliminated system), is odd and deterministic, and its x stays within a few LSB of fx_solve's
-   on well-conditioned systems (the back substitution's relative error is <= 1.5 2^-30). */
+/* fx_solve_fast has its own int32 elimination; on diagonally dominant systems with |x| below
+   |A| (both ~2^28 LSB) its x stays within a few LSB of fx_solve's: there |u_ij / u_ii| is small and
+   the roundings of U (1/2 LSB of qa each) and of x_i (1.5 2^-30 relative) hardly propagate. It is
+   odd (-b gives -x and mirrored saturation flags) and deterministic, and flags SINGULAR and ARG as
+   fx_solve does on these systems (no pivot near pivot_min). */
 UT_TEST(solve_fast_vs_solve)
 {
     uint64_t seed = 99u;
@@ -365,7 +368,7 @@ UT_TEST(solve_fast_vs_solve)
     int64_t worst = 0;
     for (it = 0u; it < 600u; it++) {
         fx_solve_ws_t w1;
-        fx_solve_ws_t w2;
+        fx_solve_fast_ws_t w2;
         int32_t a[16];
         int32_t b[4];
         int32_t nb[4];
@@ -395,24 +398,15 @@ UT_TEST(solve_fast_vs_solve)
         /* odd: -b saturates the other way */
         UT_CHECK_UEQ(s3, (s2 & (fx_status_t)~(FX_ST_SAT_HI | FX_ST_SAT_LO)) | ((s2 & FX_ST_SAT_HI) << 1) |
                              ((s2 & FX_ST_SAT_LO) >> 1));
-        UT_CHECK_UEQ(s2 & (fx_status_t)~(FX_ST_SAT_HI | FX_ST_SAT_LO), s1 & (fx_status_t)~(FX_ST_SAT_HI | FX_ST_SAT_LO));
+        UT_CHECK_UEQ(s2 & (FX_ST_SINGULAR | FX_ST_ARG), s1 & (FX_ST_SINGULAR | FX_ST_ARG));
         fx_solve_fast(&w2, a, 28u, b, 28u, n, x3, 28u, 1 << 18, &s3);
-        for (i = 0u; i < n * n; i++) {
-            UT_CHECK_EQ(w2.a[i], w1.a[i]);
-        }
         for (i = 0u; (i < n) && ((s1 & FX_ST_SINGULAR) == 0u); i++) {
             int64_t d = abs64((int64_t)x2[i] - (int64_t)x1[i]);
-            UT_CHECK_EQ(w2.b[i], w1.b[i]);
-            UT_CHECK_EQ(w2.rec[i].d, w1.rec[i].d);
-            UT_CHECK_EQ(w2.rec[i].m, w1.rec[i].m);
-            UT_CHECK_UEQ(w2.rec[i].sh, w1.rec[i].sh);
-            UT_CHECK_UEQ(w2.perm[i], w1.perm[i]);
             UT_CHECK_EQ(x3[i], x2[i]);
             if (s2 == 0u) {
                 UT_CHECK_EQ(x4[i], -x2[i]);
             }
-            if ((s1 == 0u) && dominant) {
-                /* diagonally dominant: |u_ij / u_ii| small, the error hardly propagates */
+            if ((s1 == 0u) && (s2 == 0u) && dominant) {
                 UT_CHECK_LE(d, 2 + (abs64((int64_t)x1[i]) / ((int64_t)1 << 27)));
                 worst = (d > worst) ? d : worst;
             }
@@ -427,7 +421,7 @@ UT_TEST(solve_fast_symmetry)
     uint64_t seed = 17u;
     uint32_t it;
     for (it = 0u; it < 300u; it++) {
-        fx_solve_ws_t ws;
+        fx_solve_fast_ws_t ws;
         int32_t a[16];
         int32_t b[4];
         int32_t nb[4];
@@ -465,7 +459,13 @@ UT_TEST(solve_fast_symmetry)
  *   kappa_inf(A) = |A|inf |A^-1|inf = 2.15689530168..., 2 n kappa = 17.2551630... LSB
  * fx_solve: |x_i - x_exact,i| <= 2 n kappa; 1000 |x - x_exact| <= 17255 is checked against the
  * rounded 1000 x_exact (itself within 0.5), hence the 17254.
- * fx_solve_fast: 2 n kappa (1 + 2^-29 |x|inf) = 17.2552 (1 + 1014009876 / 2^29) = 49.845 LSB.
+ * fx_solve_fast (its own int32 elimination, the old one): the fx.h bound with n = 4, e = 31,
+ * N = |A|inf = 122845580 (row 1), and X = |x|inf of the returned x (<= 1014009876 + bound < 2^30):
+ *   kappa (8 (1 + 2^-27 X) + (3 X + 1.5 2^31 + 8) / N) <= 2.156896 (8 + 64 + 26.2218 + 26.2218) = 268.41 LSB
+ * (with X = 2^30, a value above the returned |x|, so the number is a constant). Asserted as
+ * 1000 |x - x_exact| <= 268000 (the rounded 1000 x_exact is itself within 0.5). The old header's
+ * 2 n kappa (1 + 2^-29 |x|) = 49.8 LSB was false for this path (the mixed-scale sweep counts its
+ * violations).
  */
 UT_TEST(solve_bound_large_x_reproducer)
 {
@@ -475,19 +475,26 @@ UT_TEST(solve_bound_large_x_reproducer)
     static const int64_t x1000[4] = {INT64_C(844307884606), INT64_C(-31838663931), INT64_C(-1014009875860),
                                      INT64_C(-344437218740)};
     fx_solve_ws_t ws;
+    fx_solve_fast_ws_t wsf;
     int32_t x[4];
     fx_status_t st = 0u;
     uint32_t i;
+    int64_t worst_fast = 0;
     fx_solve(&ws, a, 28u, b, 27u, 4u, x, 30u, 1, &st);
     UT_UEQ(st, 0u);
     for (i = 0u; i < 4u; i++) {
         UT_CHECK_LE(abs64(((int64_t)x[i] * 1000) - x1000[i]), 17254);
     }
-    fx_solve_fast(&ws, a, 28u, b, 27u, 4u, x, 30u, 1, &st);
+    fx_solve_fast(&wsf, a, 28u, b, 27u, 4u, x, 30u, 1, &st);
     UT_UEQ(st, 0u);
     for (i = 0u; i < 4u; i++) {
-        UT_CHECK_LE(abs64(((int64_t)x[i] * 1000) - x1000[i]), 49844);
+        int64_t d = abs64(((int64_t)x[i] * 1000) - x1000[i]);
+        UT_CHECK_LE(d, 268000);
+        UT_CHECK_LE(abs64((int64_t)x[i]), (int64_t)1 << 30);   /* the X used above */
+        worst_fast = (d > worst_fast) ? d : worst_fast;
     }
+    /* the old path's error is still there (it is what the new bound has to cover) */
+    UT_CHECK(worst_fast > 17255);
 }
 
 /*

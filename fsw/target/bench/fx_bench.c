@@ -280,6 +280,7 @@ static volatile uint32_t bench_sink_u;
 static fx_status_t bench_st;   /* a static, not a local: keeps the wrappers' frames identical */
 static int32_t bench_out[FX_NMAX * FX_NMAX];
 static fx_solve_ws_t bench_ws;
+static fx_solve_fast_ws_t bench_fws;
 
 /* Null twins (fx_bench_asm.S): a lone `bx lr` each, with the kernels' prototypes. */
 int32_t  bench_null_muldiv(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_status_t *st);
@@ -296,6 +297,8 @@ void     bench_null_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint
                            uint32_t n, uint32_t k, uint32_t m, int32_t *c, uint32_t qc, fx_status_t *st);
 void     bench_null_solve(fx_solve_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
                           uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
+void     bench_null_fsolve(fx_solve_fast_ws_t *ws, const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
+                           uint32_t n, int32_t *x, uint32_t qx, int32_t pivot_min, fx_status_t *st);
 uint32_t bench_null_crc(uint32_t crc, const uint8_t *data, size_t len);
 
 /* One body per kernel, two callees: a twin differs from its wrapper only in the call target. */
@@ -318,6 +321,9 @@ uint32_t bench_null_crc(uint32_t crc, const uint8_t *data, size_t len);
         bench_sink_u = bench_st; } while (0)
 #define W_SOLVE(F, S, i) do { bench_st = 0u; \
         (F)(&bench_ws, (S)[i].a, 24u, (S)[i].b, 24u, (S)[i].n, bench_out, 24u, PIVOT_MIN_Q24, &bench_st); \
+        bench_sink_u = bench_st; } while (0)
+#define W_FSOLVE(F, S, i) do { bench_st = 0u; \
+        (F)(&bench_fws, (S)[i].a, 24u, (S)[i].b, 24u, (S)[i].n, bench_out, 24u, PIVOT_MIN_Q24, &bench_st); \
         bench_sink_u = bench_st; } while (0)
 
 static void bk_mul(uint32_t i)      { W_MULDIV(fx_mul, s_mul, i); }
@@ -344,8 +350,10 @@ static void bk_solve4(uint32_t i)   { W_SOLVE(fx_solve, s_solve4, i); }
 static void bn_solve4(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve4, i); }
 static void bk_solve2(uint32_t i)   { W_SOLVE(fx_solve, s_solve2, i); }
 static void bn_solve2(uint32_t i)   { W_SOLVE(bench_null_solve, s_solve2, i); }
-static void bk_fsolve4(uint32_t i)  { W_SOLVE(fx_solve_fast, s_solve4, i); }
-static void bk_fsolve2(uint32_t i)  { W_SOLVE(fx_solve_fast, s_solve2, i); }
+static void bk_fsolve4(uint32_t i)  { W_FSOLVE(fx_solve_fast, s_solve4, i); }
+static void bn_fsolve4(uint32_t i)  { W_FSOLVE(bench_null_fsolve, s_solve4, i); }
+static void bk_fsolve2(uint32_t i)  { W_FSOLVE(fx_solve_fast, s_solve2, i); }
+static void bn_fsolve2(uint32_t i)  { W_FSOLVE(bench_null_fsolve, s_solve2, i); }
 static void bk_crc(uint32_t i)      { bench_sink_u = fx_crc32(0u, s_crc[i], 64u); }
 static void bn_crc(uint32_t i)      { bench_sink_u = bench_null_crc(0u, s_crc[i], 64u); }
 
@@ -678,8 +686,8 @@ int main(void)
         { "fx_matmul_4x4", bk_matmul, bn_matmul, NULL, BENCH_SAMPLES, 0u },
         { "fx_solve_n4", bk_solve4, bn_solve4, NULL, BENCH_SAMPLES, 0u },
         { "fx_solve_n2", bk_solve2, bn_solve2, NULL, BENCH_SAMPLES, 0u },
-        { "fx_solve_fast_n4", bk_fsolve4, bn_solve4, NULL, BENCH_SAMPLES, 0u },
-        { "fx_solve_fast_n2", bk_fsolve2, bn_solve2, NULL, BENCH_SAMPLES, 0u },
+        { "fx_solve_fast_n4", bk_fsolve4, bn_fsolve4, NULL, BENCH_SAMPLES, 0u },
+        { "fx_solve_fast_n2", bk_fsolve2, bn_fsolve2, NULL, BENCH_SAMPLES, 0u },
         { "fx_crc32_64B", bk_crc, bn_crc, NULL, BENCH_SAMPLES, 0u },
         { "obs_step_50hz_phys", bk_obs, bn_obs, NULL, BENCH_SAMPLES, 0u },
         { "imp_trig", bk_imp_trig, bn_imp_trig, NULL, BENCH_SAMPLES, 0u },

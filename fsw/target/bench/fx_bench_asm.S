@@ -109,6 +109,7 @@ bench_sled_\n:
     NULLFN bench_null_matvec
     NULLFN bench_null_matmul
     NULLFN bench_null_solve
+    NULLFN bench_null_fsolve
     NULLFN bench_null_crc
     NULLFN bench_null_obs
     NULLFN bench_null_imp_solve
