@@ -40,10 +40,32 @@ MetricsTap::MetricsTap(lcm_t *lcm, const sim::Scenario &scn)
       mission_(host::mission_host(scn.mission).make_metrics(scn)), i_health_(layout_.at("health")),
       i_tbl_rev_(layout_.at("tbl_revision")), i_tbl_acc_(layout_.at("n_tbl_acc"))
 {
+    if (lcm_ == nullptr) {
+        return;
+    }
     subs_[0] = lcm_subscribe(lcm_, kChTruth, &MetricsTap::on_truth, this);
     subs_[1] = lcm_subscribe(lcm_, kChCmd, &MetricsTap::on_cmd, this);
     subs_[2] = lcm_subscribe(lcm_, kChTlm, &MetricsTap::on_tlm, this);
     subs_[3] = lcm_subscribe(lcm_, kChTblAck, &MetricsTap::on_ack, this);
+}
+
+void MetricsTap::feed(const char *channel, const std::uint8_t *data, std::size_t len)
+{
+    lcm_recv_buf_t rb{};
+    rb.data = const_cast<std::uint8_t *>(data);   // the callbacks only read it (LCM's own signature)
+    rb.data_size = static_cast<std::uint32_t>(len);
+    const std::string ch(channel);
+    if (ch == kChTruth) {
+        on_truth(&rb, channel, this);
+    } else if (ch == kChCmd) {
+        on_cmd(&rb, channel, this);
+    } else if (ch == kChTlm) {
+        on_tlm(&rb, channel, this);
+    } else if (ch == kChTblAck) {
+        on_ack(&rb, channel, this);
+    } else {
+        // not a channel the metrics read
+    }
 }
 
 MetricsTap::~MetricsTap()

@@ -39,8 +39,11 @@ struct CoreMetrics {
 
 class MetricsTap {
 public:
+    // lcm null: no subscriptions; the messages come through feed() (the batch driver, batch.hpp).
     MetricsTap(lcm_t *lcm, const sim::Scenario &scn);
     ~MetricsTap();
+    // One message as the LCM callbacks would receive it (channel: channels.hpp).
+    void feed(const char *channel, const std::uint8_t *data, std::size_t len);
     MetricsTap(const MetricsTap &) = delete;
     MetricsTap &operator=(const MetricsTap &) = delete;
     // The metrics so far; tlm is filled here from the last decoded telemetry (decoding every

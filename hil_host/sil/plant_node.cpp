@@ -139,7 +139,8 @@ void PlantNode::inject_sensor_faults(sim::SensorFrame &f, double t_s)
     }
 }
 
-void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flags, bool through_faults)
+int encode_frame(const sim::Scenario &scn, const sim::SensorFrame &f, std::int32_t plant_flags,
+                 std::vector<std::uint8_t> &buf)
 {
     gnc::sensor_frame_v2_t m{};
     m.utime = f.utime_us;
@@ -157,9 +158,28 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
         }
         m.status[i] = st;
     }
-    m.scenario_flags = scn_.faults.any() ? 1 : 0;
+    m.scenario_flags = scn.faults.any() ? 1 : 0;
     m.plant_flags = plant_flags;
-    const int n = bridge::encode(m, buf_.data(), buf_.size());   // sealed with its crc32
+    return bridge::encode(m, buf.data(), buf.size());   // sealed with its crc32
+}
+
+int encode_truth(const sim::Plant &plant, std::uint64_t k, std::vector<std::uint8_t> &buf)
+{
+    gnc::sim_truth_t m{};
+    m.utime = plant.utime_us();
+    m.seq = static_cast<std::int64_t>(k);
+    std::array<double, 16> st{};
+    std::array<double, 8> ex{};
+    plant.truth_message(st, ex);
+    for (std::size_t i = 0; i < 16u; ++i) { m.state[i] = st[i]; }
+    for (std::size_t i = 0; i < 8u; ++i) { m.extra[i] = ex[i]; }
+    m.events = static_cast<std::int32_t>(plant.events().size() > 0x7FFFFFFF ? 0x7FFFFFFF : plant.events().size());
+    return m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+}
+
+void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flags, bool through_faults)
+{
+    const int n = encode_frame(scn_, f, plant_flags, buf_);
     if (n < 0) {
         throw std::runtime_error("sensor_frame_v2_t encode failed");
     }
@@ -179,16 +199,7 @@ void PlantNode::publish_frame(const sim::SensorFrame &f, std::int32_t plant_flag
 
 void PlantNode::publish_truth(std::uint64_t k)
 {
-    gnc::sim_truth_t m{};
-    m.utime = plant_->utime_us();
-    m.seq = static_cast<std::int64_t>(k);
-    std::array<double, 16> st{};
-    std::array<double, 8> ex{};
-    plant_->truth_message(st, ex);
-    for (std::size_t i = 0; i < 16u; ++i) { m.state[i] = st[i]; }
-    for (std::size_t i = 0; i < 8u; ++i) { m.extra[i] = ex[i]; }
-    m.events = static_cast<std::int32_t>(plant_->events().size() > 0x7FFFFFFF ? 0x7FFFFFFF : plant_->events().size());
-    const int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
+    const int n = encode_truth(*plant_, k, buf_);
     if (n > 0) {
         lcm_publish(lcm_, kChTruth, buf_.data(), static_cast<unsigned>(n));
     }

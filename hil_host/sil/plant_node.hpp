@@ -55,6 +55,12 @@ struct PlantSummary {
     bool deterministic() const { return sync || (missed == 0 && retx == 0); }
 };
 
+// The sensor frame of step k as the plant publishes it (sealed with its crc32; plant_flags:
+// PLANT_RETX on a re-send) and the truth message; the batch driver (batch.hpp) sends the same bytes.
+int encode_frame(const sim::Scenario &scn, const sim::SensorFrame &f, std::int32_t plant_flags,
+                 std::vector<std::uint8_t> &buf);
+int encode_truth(const sim::Plant &plant, std::uint64_t k, std::vector<std::uint8_t> &buf);
+
 class PlantNode {
 public:
     // Hooks the runner may use between steps (e.g. a table upload at a given time).

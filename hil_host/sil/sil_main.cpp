@@ -1,7 +1,9 @@
 // sil — software-in-the-loop driver (spec 00 §5), for any mission of the build.
 //
 //   sil run    --scenario F [--url memq://|udpm://...] [--log F] [--summary F] [--summary-json F]
-//              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...] [--determinism-check]
+//              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...] [--determinism-check] [--batch]
+//              --batch: no transport (batch.hpp): the same plant, packets, bridge core, fsw_step and
+//              metrics without LCM, for long runs; fault-free scenarios with built-in tables only
 //              plant + bridge (fixed-point flight code, or the mission's double reference) + log
 //              tap in ONE process on one lcm_t.
 //   sil plant  --scenario F --url udpm://... [--summary F] [--summary-json F] [--ready-timeout-ms N] [--progress]
@@ -45,6 +47,7 @@
 #include "log_tap.hpp"
 #include "metrics.hpp"
 #include "plant_node.hpp"
+#include "batch.hpp"
 #include "sil_run.hpp"
 
 namespace {
@@ -268,7 +271,7 @@ try {
     app.require_subcommand(1);
     std::string scn_path, url, log, summary, summary_json, fsw = "fixed";
     std::vector<std::string> uploads;
-    bool progress = false, det_check = false;
+    bool progress = false, det_check = false, batch = false;
     int ready_ms = 10000, idle_ms = 30000;
     const std::string url_help = "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0";
     const CLI::Validator non_empty(
@@ -286,6 +289,9 @@ try {
     run->add_flag("--progress", progress, "progress line on stderr")->disable_flag_override();
     run->add_flag("--determinism-check", det_check,
                   "fly the run twice and compare the command/telemetry streams (the determinism verdict)")
+        ->disable_flag_override();
+    run->add_flag("--batch", batch, "no transport: the in-process lock-step driver (same plant, packets, bridge, "
+                                    "flight code and metrics; no LCM, no log, no faults or uploads)")
         ->disable_flag_override();
 
     CLI::App *plant = app.add_subcommand("plant", "the plant node of a separate-process run");
@@ -348,7 +354,15 @@ try {
             check_run(scn, url, fsw, uploads, log, summary, summary_json, o);
             o.progress = progress;
             o.determinism_check = det_check;
-            const sil::InprocResult r = sil::run_inproc(scn, o);
+            if (batch && (!url.empty() || !log.empty() || !uploads.empty() || det_check || fsw != "fixed")) {
+                throw UsageError("--batch flies without a transport: no --url, --log, --upload, --determinism-check "
+                                 "or --fsw other than fixed");
+            }
+            if (batch && (scn.faults.any() || !scn.fsw.table_file.empty())) {
+                throw UsageError("--batch: scenario '" + scn.name + "' has faults or a table file, which act through "
+                                 "the transport; fly it without --batch");
+            }
+            const sil::InprocResult r = batch ? sil::run_batch(scn, progress) : sil::run_inproc(scn, o);
             std::cout << r.summary.text();
             write_summary(r.summary, summary, summary_json);
             if (!r.loss_of_control.empty()) {

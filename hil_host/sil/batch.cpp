@@ -1,0 +1,142 @@
+#include "batch.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "bridge.hpp"
+#include "channels.hpp"
+#include "gnc/actuator_cmd_v2_t.hpp"
+#include "gnc/fsw_cmd_v2_t.hpp"
+#include "gnc/fsw_tlm_frame_t.hpp"
+#include "lcm_codec.hpp"
+#include "metrics.hpp"
+#include "plant_node.hpp"
+#include "scenario/scenario.hpp"
+
+namespace sil {
+
+namespace {
+
+// Telecommands of the scenario at their step, through their sealed encoding (plant_node.cpp).
+void deliver_commands(const sim::Scenario &scn, std::size_t &next, std::uint64_t k, std::int64_t utime, double t_s,
+                      bridge::Bridge &core, std::vector<std::uint8_t> &buf)
+{
+    while (next < scn.commands.size() && scn.commands[next].t_s <= t_s + 1e-9) {
+        const sim::ScnCommand &c = scn.commands[next++];
+        gnc::fsw_cmd_v2_t m{};
+        m.utime = utime;
+        m.apply_seq = static_cast<std::int64_t>(k);
+        m.cmd = c.cmd;
+        for (std::size_t i = 0; i < 8u; ++i) { m.args[i] = c.args[i]; }
+        const int n = bridge::encode(m, buf.data(), buf.size());
+        bridge::FswCommand fc{};
+        if (n > 0 && bridge::decode_fsw_cmd(buf.data(), static_cast<std::size_t>(n), fc) == bridge::Wire::Ok) {
+            (void)core.on_command(fc);
+        } else {
+            bridge::sat_inc(core.counters_mut().cmd_rej);
+        }
+    }
+}
+
+}  // namespace
+
+InprocResult run_batch(const sim::Scenario &scn, bool progress)
+{
+    if (scn.faults.any()) {
+        throw std::invalid_argument("the batch driver flies fault-free scenarios only (faults act on the transport): "
+                                    "fly '" + scn.name + "' with sil run");
+    }
+    if (!scn.fsw.table_file.empty()) {
+        throw std::invalid_argument("the batch driver boots the scenario's built-in table; a table file is an "
+                                    "upload: fly '" + scn.name + "' with sil run");
+    }
+    std::unique_ptr<bridge::InProcessFswBackend> be = make_fixed_backend(scn);
+    bridge::Bridge core(*be, run_limits(scn));
+    MetricsTap mt(nullptr, scn);
+    std::unique_ptr<sim::Plant> plant = sim::make_plant(scn);
+    plant->reset(scn);
+    std::vector<std::uint8_t> buf(4096), out(4096);
+    InprocResult res;
+    PlantSummary &ps = res.plant;
+    ps.sync = true;
+    std::uint64_t missed_run = 0;
+    std::size_t next_cmd = 0;
+    const std::uint64_t n = scn.n_steps();
+    const auto w0 = std::chrono::steady_clock::now();
+    for (std::uint64_t k = 0; k < n; ++k) {
+        const std::int64_t utime = plant->utime_us();
+        deliver_commands(scn, next_cmd, k, utime, static_cast<double>(utime) * 1e-6, core, out);
+        const sim::SensorFrame f = plant->sense();
+        int len = encode_truth(*plant, k, buf);
+        if (len > 0) {
+            mt.feed(kChTruth, buf.data(), static_cast<std::size_t>(len));
+        }
+        len = encode_frame(scn, f, 0, buf);
+        if (len < 0) {
+            throw std::runtime_error("sensor_frame_v2_t encode failed");
+        }
+        const bridge::Reply r = core.on_bytes(buf.data(), static_cast<std::size_t>(len));
+        bool got = false;
+        sim::ActuatorCmd cmd{};
+        if (r.publish_cmd) {
+            gnc::actuator_cmd_v2_t m{};
+            bridge::to_lcm(r.cmd, m);
+            const int nb = bridge::encode(m, out.data(), out.size());
+            if (nb > 0) {
+                mt.feed(kChCmd, out.data(), static_cast<std::size_t>(nb));
+                if (m.seq >= 0 && static_cast<std::uint64_t>(m.seq) == k && m.n_counts >= 0 && m.n_counts <= 16) {
+                    got = true;
+                    cmd.seq = static_cast<std::uint32_t>(m.seq & 0xFFFFFFFF);
+                    cmd.n_ch = static_cast<std::uint32_t>(m.n_counts);
+                    for (std::size_t i = 0; i < cmd.n_ch && i < sim::kMaxChannels; ++i) {
+                        cmd.cnt[i] = m.counts[i];
+                    }
+                }
+            }
+        }
+        if (r.publish_tlm) {
+            gnc::fsw_tlm_frame_t m{};
+            bridge::to_lcm(r.tlm, m);
+            const int nb = bridge::encode(m, out.data(), out.size());
+            if (nb > 0) {
+                mt.feed(kChTlm, out.data(), static_cast<std::size_t>(nb));
+            }
+        }
+        if (got) {
+            plant->apply(cmd);
+            missed_run = 0;
+        } else {   // no re-send without a transport: the frame was refused, the last command holds
+            ++ps.missed;
+            ++missed_run;
+            ps.missed_run_max = (missed_run > ps.missed_run_max) ? missed_run : ps.missed_run_max;
+            core.set_missed(static_cast<std::int32_t>(ps.missed > 0x7FFFFFFFu ? 0x7FFFFFFFu : ps.missed));
+        }
+        const sim::RunState st = plant->propagate();
+        ++ps.steps;
+        if (progress && ((k + 1) % 1000000u == 0u || k + 1 == n)) {
+            std::fprintf(stderr, "\r  sil batch: step %llu / %llu", static_cast<unsigned long long>(k + 1),
+                         static_cast<unsigned long long>(n));
+            if (k + 1 == n) { std::fprintf(stderr, "\n"); }
+        }
+        if (st == sim::RunState::Diverged) {
+            ps.diverged = true;
+            ps.reason = "DIVERGED: " + plant->diverged_reason();
+            break;
+        }
+    }
+    res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    ps.t_end_s = static_cast<double>(plant->utime_us()) * 1e-6;
+    res.core = mt.core();
+    res.mission = mt.mission_ptr();
+    res.bridge = core.counters();
+    res.loss_of_control = loss_of_control(scn, ps);
+    run_header(scn, be->name(), "batch", res.summary);
+    plant_summary(scn, ps, res.summary, nullptr);
+    mt.summary(res.summary, &res.bridge);
+    res.summary.add("wall_s", res.wall_s, "%g");
+    res.summary.add("steps_per_s", res.wall_s > 0.0 ? static_cast<double>(ps.steps) / res.wall_s : 0.0, "%g");
+    return res;
+}
+
+}  // namespace sil
