@@ -86,7 +86,8 @@ SIM_TEST(test_core_errors)
         expect_scenario_error(base + "dt: 0.02\n", {"bad.yaml", "'dt'", "unknown key"});
         expect_scenario_error(base + "period_us: 20000.5\n", {"'period_us'", "not an integer"});
         expect_scenario_error(base + "duration_s: 0.001\n", {"bad.yaml", "'duration_s'", "duplicate key", line});
-        expect_scenario_error(minimal(lower(m), "0.001"), {"'duration_s'", "shorter than one period"});
+        // 0.4 ms rounds to zero steps at every period a table allows (>= 1 ms; n_steps rounds half up)
+        expect_scenario_error(minimal(lower(m), "0.0004"), {"'duration_s'", "shorter than one period"});
         std::vector<std::string> unknown_table{"'fsw.table'", "unknown " + m + " table 'no_such_table'"};
         unknown_table.insert(unknown_table.end(), tables.begin(), tables.end());   // the valid ones listed
         expect_scenario_error(base + "fsw: {table: no_such_table}\n", unknown_table);
