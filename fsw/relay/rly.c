@@ -23,16 +23,6 @@ uint32_t rly_tau2(uint16_t kt_q16, uint32_t tau1)
     return (r < 1u) ? 1u : r;
 }
 
-uint32_t rly_xorshift32(uint32_t *x)
-{
-    uint32_t v = *x;
-    v ^= v << 13;
-    v ^= v >> 17;
-    v ^= v << 5;
-    *x = v;
-    return v;
-}
-
 uint64_t rly_dphi_of(uint64_t f_q64, uint32_t period_us)
 {
     /* f period / 10^6 with f < 2^64 and period < 2^20: the high half's quotient and remainder,

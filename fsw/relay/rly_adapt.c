@@ -13,6 +13,16 @@
  */
 #include "rly_int.h"
 
+uint32_t rly_xorshift32(uint32_t *x)
+{
+    uint32_t v = *x;
+    v ^= v << 13;
+    v ^= v >> 17;
+    v ^= v << 5;
+    *x = v;
+    return v;
+}
+
 void rly_adapt_init(rly_adapt_t *a, const rly_params_t *p)
 {
     static const rly_adapt_t zero = {0};
