@@ -12,7 +12,7 @@ export DEBIAN_FRONTEND=noninteractive
 PKGS=(cmake ninja-build pkg-config gcc g++ python3 python3-venv
       libcmocka-dev libeigen3-dev liblcm-dev liblcm-bin libglib2.0-dev
       gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm
-      cppcheck clang-tidy clang-14 libclang-rt-14-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev)
+      cppcheck clang-tidy clang-14 libclang-rt-14-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev)
 
 missing=()
 for p in "${PKGS[@]}"; do

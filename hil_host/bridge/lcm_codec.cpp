@@ -2,9 +2,7 @@
 
 #include <climits>
 
-extern "C" {
-#include "fx.h"
-}
+#include <zlib.h>
 
 namespace bridge {
 
@@ -37,9 +35,15 @@ int encode_any(const M &m, std::uint8_t *buf, std::size_t cap)
 
 constexpr std::size_t kCrcLen = 4u;   // crc32 is the last field: the last 4 encoded bytes
 
+// zlib's crc32 is the CRC-32 the wire specifies (IEEE, reflected, init and final xor 0xFFFFFFFF: the
+// flight's fx_crc32 and Python's zlib.crc32 give the same check value, test_fx_core). The host uses
+// the library's table-driven one: with the flight's 64-byte nibble table, sealing and checking frames
+// took a third of a Release `sil run --batch` (perf); zlib made the run 27 % faster.
 std::uint32_t crc_of(const std::uint8_t *buf, std::size_t n)
 {
-    return fx_crc32(0u, buf, n - kCrcLen);
+    const std::size_t len = n - kCrcLen;   // callers pass n >= kCrcLen; frames are < 1 KiB
+    return static_cast<std::uint32_t>(
+        ::crc32(0uL, buf, static_cast<uInt>(len)));
 }
 
 // LCM encodes int32 big-endian.
