@@ -13,6 +13,13 @@
 namespace sil {
 
 namespace {
+// fsw_tlm_frame_t's bridge counters as CoreMetrics::bridge holds them (the summary's order, which
+// was the former map's alphabetical one).
+const char *const kFrameCounters[] = {"dups", "gaps", "missed", "nonfinite_rej", "range_rej", "rejected", "stale",
+                                      "table_rej"};
+static_assert(sizeof kFrameCounters / sizeof kFrameCounters[0] == std::tuple_size<decltype(CoreMetrics::bridge)>::value,
+              "one name per frame counter");
+
 // The executive's counters every mission's summary carries (fsw_iface.py HEAD).
 const char *const kExecFields[] = {"mode", "n_chan_rej", "n_stale_steps", "n_in_bad", "n_tbl_acc", "n_tbl_rej",
                                    "tbl_revision", "n_scrub_err", "n_safe", "n_mode_rej", "host_missed",
@@ -118,9 +125,7 @@ void MetricsTap::on_tlm(const lcm_recv_buf_t *rb, const char *, void *user)
         m.t_first_fx_s = ts;
         m.first_fx_bits = health & 0xFFu;
     }
-    m.bridge = {{"dups", f.dups}, {"stale", f.stale}, {"gaps", f.gaps}, {"rejected", f.rejected},
-                {"nonfinite_rej", f.nonfinite_rej}, {"range_rej", f.range_rej}, {"missed", f.missed},
-                {"table_rej", f.table_rej}};
+    m.bridge = {f.dups, f.gaps, f.missed, f.nonfinite_rej, f.range_rej, f.rejected, f.stale, f.table_rej};
     if (m.tbl_revision_first < 0) {
         m.tbl_revision_first = v[self->i_tbl_rev_];
     }
@@ -161,6 +166,16 @@ const CoreMetrics &MetricsTap::core() const
     return m_;
 }
 
+std::int64_t frame_counter(const CoreMetrics &m, const std::string &name)
+{
+    for (std::size_t i = 0; i < m.bridge.size(); ++i) {
+        if (name == kFrameCounters[i]) {
+            return m.bridge[i];
+        }
+    }
+    return -1;
+}
+
 void MetricsTap::summary(host::Summary &s, const bridge::Counters *bridge_final) const
 {
     const CoreMetrics &m = core();
@@ -184,8 +199,8 @@ void MetricsTap::summary(host::Summary &s, const bridge::Counters *bridge_final)
         }
     } else {
         s.add_str("bridge_counters_from", "last telemetry frame (the bridge is another process)");
-        for (const auto &kv : m.bridge) {
-            s.add_int("bridge_" + kv.first, kv.second);
+        for (std::size_t i = 0; i < m.bridge.size(); ++i) {
+            s.add_int(std::string("bridge_") + kFrameCounters[i], m.bridge[i]);
         }
     }
     for (const char *k : kExecFields) {

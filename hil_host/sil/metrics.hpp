@@ -6,6 +6,7 @@
 #ifndef HIL_SIL_METRICS_HPP
 #define HIL_SIL_METRICS_HPP
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -26,7 +27,9 @@ struct CoreMetrics {
     std::uint32_t first_fx_bits = 0;
     std::int32_t last_ack_result = -1, last_ack_reason = 0;
     std::map<std::string, std::int64_t> tlm;      // last decoded telemetry fields (raw)
-    std::map<std::string, std::int64_t> bridge;   // last bridge counters of fsw_tlm_frame_t
+    // Last bridge counters of fsw_tlm_frame_t, in kFrameCounters order (metrics.cpp). Plain integers:
+    // a name-keyed map rebuilt every frame was a tenth of a Release batch run (allocations per tick).
+    std::array<std::int64_t, 8> bridge{};
     // Table uploads as the ground sees them: final acks (a PARTIAL ack is one chunk stored).
     std::uint64_t ack_accepted = 0, ack_rejected = 0;
     std::int64_t tbl_revision_first = -1;         // active revision in the first telemetry
@@ -36,6 +39,9 @@ struct CoreMetrics {
     // order: two runs with equal digests produced the same streams (the determinism check).
     std::uint64_t digest_cmd = 0xCBF29CE484222325u, digest_tlm = 0xCBF29CE484222325u;
 };
+
+// One of CoreMetrics::bridge by its fsw_tlm_frame_t name ("missed", "gaps", ...); -1 if no such counter.
+std::int64_t frame_counter(const CoreMetrics &m, const std::string &name);
 
 class MetricsTap {
 public:

@@ -71,8 +71,7 @@ std::int64_t tlm(const sil::InprocResult &r, const char *k)
 
 std::int64_t br(const sil::InprocResult &r, const char *k)
 {
-    const auto it = r.core.bridge.find(k);
-    return it == r.core.bridge.end() ? -1 : it->second;
+    return sil::frame_counter(r.core, k);
 }
 
 // Every nominal run: completed, lock-step clean (deterministic), no SAT outside the designated
