@@ -6,7 +6,8 @@
 //   and 6 L_MAIN entries (drift 14-21 s: 300 s holds 7 cycles); every main pulse 2.7-4.0 s and
 //   every brake 0.85-1.25 s (§7 S2); the flight copy against the plant's osculating amplitudes
 //   at every tick within (4 + N_changes) LSB of 2^-40 rad (§4.3, §7 S3), N_changes the applied
-//   level changes of the run.
+//   level changes of the run; the envelope period (first autocorrelation peak of the flight a at
+//   20 Hz over [150, 300] s, RelayMetrics::env_period_s) 44 +- 2 s (§7 S2).
 // F2 (§8): a 0.5 s NaN outage of the angle at 100 s: 500 refused samples, COAST (OFF) from the
 //   100th, one SENSOR_LOST entry, never the executive's SAFE, the cycle resumes two-sided.
 // F7 (§8) reduced: two flights of 120 s with noise give identical command and telemetry streams;
@@ -49,13 +50,14 @@ SIM_TEST(s2_s3_reduced_cycle_and_envelope)
     const host::RelayMetrics &m = mm(r);
     const double bound = 4.0 + static_cast<double>(m.level_changes);
     std::printf("S2/S3 300 s: R %.0f L %.0f main pulses, main %.3f-%.3f s, brake %.3f-%.3f s, peak |x| %.4g rad,"
-                " %llu level changes, envelope error max %.2f LSB (bound %.0f) over %llu ticks\n",
+                " %llu level changes, envelope error max %.2f LSB (bound %.0f) over %llu ticks, envelope period %.3f s\n",
                 r.summary.number("fsw_rly_n_r_main"), r.summary.number("fsw_rly_n_l_main"), m.tau_main_min_s,
                 m.tau_main_max_s, m.tau_brake_min_s, m.tau_brake_max_s, m.x_peak_rad,
                 static_cast<unsigned long long>(m.level_changes), m.env_err_max_lsb, bound,
-                static_cast<unsigned long long>(m.env_pairs));
+                static_cast<unsigned long long>(m.env_pairs), m.env_period_s());
     EXPECT_TRUE(!r.plant.diverged && r.loss_of_control.empty());
     EXPECT_EQ_INT(r.plant.steps, 300000);
+    EXPECT_LE(std::fabs(m.env_period_s() - 44.0), 2.0);
     EXPECT_LE(6.0, r.summary.number("fsw_rly_n_r_main"));
     EXPECT_LE(6.0, r.summary.number("fsw_rly_n_l_main"));
     EXPECT_LE(2.7, m.tau_main_min_s);

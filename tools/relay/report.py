@@ -7,7 +7,7 @@ the same order of operations, so with --summary they are the run summary's and t
 derivation is checked against them (CTest sil_rly_report_agrees): peak |x|, applied level
 changes, the true and the flight envelope means over [2000 s, end], the largest envelope error
 of the flight copy against the plant truth (LSB of 2^-40 rad), main and brake pulse ranges, the
-first freeze, the final k_t and the OR of the module's health. Plots: DIR/angle.png (x with the
+first freeze, the final k_t, the envelope period and the OR of the module's health. Plots: DIR/angle.png (x with the
 deadband), DIR/envelope.png (true and flight a), DIR/kt.png (k_t and the window means).
 """
 import math
@@ -35,6 +35,8 @@ SUMMARY_KEYS = [
     Key("tau_brake_max_s", "tau_brake_max_s"),
     Key("t_first_freeze_s", "t_first_freeze_s"),
     Key("kt_final", "kt_final"),
+    Key("env_period_s", "env_period_s", 0.01, "autocorrelation sums in numpy's order, not the C++ loop's; "
+        "the peak's lag is an integer count of 0.05-s samples and the parabola moves it by < 1e-6 s"),
     Key("rly_health_or", "rly_health_sticky"),
 ]
 COUNTERS = ["n_r_main", "n_l_main", "n_x_invalid", "n_x_range", "n_lost", "n_tau_sat", "n_kt_clamped", "n_env_sat",
@@ -80,6 +82,7 @@ def metrics(R, mission, m):
     raw = L["raw"]
     err, pairs, sum_fsw, n_fsw = 0.0, 0, 0.0, 0
     pulses, t1r, t2r = 0, [], []
+    t20, a20 = [], []
     last_st, last_win = -1, 0
     t_freeze = -1.0
     ut = L["utime"]
@@ -92,6 +95,9 @@ def metrics(R, mission, m):
             for k in range(4):   # unmodelled modes: 0 in both
                 err = max(err, abs(float(raw["rly_a_%d" % k][j]) - at[k] * Q40))
             pairs += 1
+        if us % ENV_SAMPLE_US == 0:
+            t20.append(ts)
+            a20.append(float(raw["rly_a"][j]) / Q40)
         if ts >= LATE_FROM_S:
             sum_fsw += float(raw["rly_a"][j]) / Q40
             n_fsw += 1
@@ -109,7 +115,8 @@ def metrics(R, mission, m):
     m.update(env_err_max_lsb=err, env_pairs=pairs, abar_fsw_late_rad=sum_fsw / n_fsw if n_fsw else 0.0,
              main_pulses=pulses, tau_main_min_s=min(t1r, default=0.0), tau_main_max_s=max(t1r, default=0.0),
              tau_brake_min_s=min(t2r, default=0.0), tau_brake_max_s=max(t2r, default=0.0),
-             t_first_freeze_s=t_freeze, kt_final=float(raw["rly_kt"][-1]) / 65536.0)
+             t_first_freeze_s=t_freeze, kt_final=float(raw["rly_kt"][-1]) / 65536.0,
+             env_period_s=env_period_s(t20, a20))
     hw = raw["rly_health"].astype(np.int64)
     m["rly_health_or"] = int(np.bitwise_or.reduce(hw))
     for k in COUNTERS:
@@ -119,6 +126,34 @@ def metrics(R, mission, m):
                          float(raw["rly_win_kt_in"][j]) / 65536.0, int(raw["rly_win_event"][j]))
                         for j in range(len(ut)) if (raw["rly_health"][j] & 0x10000)]
     return m
+
+
+ENV_SAMPLE_US = 50000         # RelayMetrics::kEnvSampleUs (20 Hz)
+ENV_MAX_LAG = 2400            # RelayMetrics::kEnvMaxLag (120 s)
+
+
+def env_period_s(t_s, a_rad):
+    """RelayMetrics::env_period_s: first autocorrelation peak of a (20 Hz) past its first dip."""
+    if len(t_s) == 0:
+        return -1.0
+    t0 = min(LATE_FROM_S, 0.5 * t_s[-1])
+    x = np.asarray([a for t, a in zip(t_s, a_rad) if t >= t0], dtype=float)
+    x = x - x.mean()
+    n = len(x)
+    lmax = min(ENV_MAX_LAG, n // 2)
+    r = np.zeros(lmax + 1)
+    for lag in range(1, lmax + 1):
+        r[lag] = float(np.dot(x[:n - lag], x[lag:])) / (n - lag)
+    lag = 2
+    while lag < lmax and not (r[lag] <= r[lag - 1] and r[lag] < r[lag + 1]):
+        lag += 1
+    while lag < lmax and not (r[lag] >= r[lag - 1] and r[lag] > r[lag + 1]):
+        lag += 1
+    if lag >= lmax:
+        return -1.0
+    den = r[lag - 1] - 2.0 * r[lag] + r[lag + 1]
+    d = 0.5 * (r[lag - 1] - r[lag + 1]) / den if den < 0.0 else 0.0
+    return (lag + d) * ENV_SAMPLE_US * 1e-6
 
 
 def format_summary(m, src):
@@ -133,6 +168,8 @@ def format_summary(m, src):
         o += ["  pulses            %d main (R %d, L %d): main %.3f-%.3f s, brake %.3f-%.3f s%s" % (
                   m["main_pulses"], f["rly_n_r_main"], f["rly_n_l_main"], m["tau_main_min_s"], m["tau_main_max_s"],
                   m["tau_brake_min_s"], m["tau_brake_max_s"], src.tag("main_pulses")),
+              "  envelope period   %.2f s (autocorrelation of the flight a at 20 Hz; spec S2 44 +- 2 s)%s" % (
+                  m["env_period_s"], src.tag("env_period_s")),
               "  adaptation        k_t final %.5f; first freeze %s; %d windows%s" % (
                   m["kt_final"], "never" if m["t_first_freeze_s"] < 0 else "%.0f s" % m["t_first_freeze_s"],
                   f["rly_n_windows"], src.tag("kt_final"))]

@@ -1,5 +1,6 @@
 #include "relay/rly_metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "relay/relay_section.hpp"
@@ -67,6 +68,9 @@ void RelayMetrics::on_tlm(const std::vector<std::int64_t> &v, double t_s)
         }
         ++env_pairs;
     }
+    if (us % kEnvSampleUs == 0) {
+        a20_.emplace_back(t_s, static_cast<double>(v[i_a_]) / kQ40);
+    }
     if (t_s >= kLateFromS) {
         sum_fsw_ += static_cast<double>(v[i_a_]) / kQ40;
         ++n_fsw_;
@@ -97,6 +101,55 @@ void RelayMetrics::on_tlm(const std::vector<std::int64_t> &v, double t_s)
     last_ = v;
 }
 
+double RelayMetrics::env_period_s() const
+{
+    if (a20_.empty()) {
+        return -1.0;
+    }
+    const double t0 = std::fmin(kLateFromS, 0.5 * a20_.back().first);
+    std::vector<double> x;
+    for (const auto &e : a20_) {
+        if (e.first >= t0) {
+            x.push_back(e.second);
+        }
+    }
+    double mean = 0.0;
+    for (const double a : x) {
+        mean += a;
+    }
+    mean /= static_cast<double>(x.empty() ? 1u : x.size());
+    for (double &a : x) {
+        a -= mean;
+    }
+    const std::size_t n = x.size();
+    const std::size_t lmax = std::min(kEnvMaxLag, n / 2);
+    std::vector<double> r(lmax + 1, 0.0);
+    for (std::size_t l = 1; l <= lmax; ++l) {   // mean of the products, as tools/relay/report.py
+        double acc = 0.0;
+        for (std::size_t i = 0; i + l < n; ++i) {
+            acc += x[i] * x[i + l];
+        }
+        r[l] = acc / static_cast<double>(n - l);
+    }
+    // The first local minimum, then the first local maximum after it: the envelope also drifts
+    // slowly (r stays positive through the first period on a 2000-s run), so a zero crossing is no
+    // reliable marker.
+    std::size_t l = 2;
+    while (l < lmax && !(r[l] <= r[l - 1] && r[l] < r[l + 1])) {
+        ++l;
+    }
+    while (l < lmax && !(r[l] >= r[l - 1] && r[l] > r[l + 1])) {
+        ++l;
+    }
+    const std::size_t best = (l < lmax) ? l : 0u;
+    if (best == 0) {
+        return -1.0;
+    }
+    const double den = r[best - 1] - 2.0 * r[best] + r[best + 1];
+    const double d = (den < 0.0) ? 0.5 * (r[best - 1] - r[best + 1]) / den : 0.0;
+    return (static_cast<double>(best) + d) * static_cast<double>(kEnvSampleUs) * 1e-6;
+}
+
 void RelayMetrics::summary(Summary &s) const
 {
     const iface::Mission &m = iface_mission("RELAY");
@@ -113,6 +166,7 @@ void RelayMetrics::summary(Summary &s) const
     s.add("tau_brake_max_s", tau_brake_max_s, "%.3f");
     s.add("t_first_freeze_s", t_first_freeze_s, "%.1f");
     s.add("kt_final", kt_final, "%.6f");
+    s.add("env_period_s", env_period_s(), "%.3f");
     if (!last_.empty()) {
         const TlmLayout &l = tlm_layout(m);
         for (const char *k : kCounters) {

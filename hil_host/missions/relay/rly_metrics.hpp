@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mission_host.hpp"
@@ -34,6 +35,12 @@ public:
     double t_first_freeze_s = -1.0;     // first FREEZE_* window event
     double kt_final = 0.0;
     std::uint32_t health_or = 0;
+    // Envelope period (spec 20 §7 S2: 44 +- 2 s): the first autocorrelation peak of the flight a
+    // sampled at 20 Hz, past its first dip, refined by a parabola; -1 if there is none.
+    // Samples from t >= min(kLateFromS, t_end / 2), so a 300-s suite run measures it too.
+    static constexpr std::int64_t kEnvSampleUs = 50000;   // 20 Hz
+    static constexpr std::size_t kEnvMaxLag = 2400;       // 120 s
+    double env_period_s() const;
 
 private:
     double h_s_;
@@ -47,6 +54,7 @@ private:
     std::size_t i_health_, i_st_, i_tau1_, i_tau2_, i_kt_, i_a_, i_ai_, i_win_event_, i_windows_;
     std::int64_t last_windows_ = 0;
     std::vector<std::int64_t> last_;
+    std::vector<std::pair<double, double>> a20_;   // (t [s], flight a [rad]) at 20 Hz
 };
 
 }  // namespace host
