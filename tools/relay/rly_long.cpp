@@ -7,9 +7,9 @@
 // would cost most of the time.
 //
 //   rly_long exactness [--t 20000]                      S1: RK4 at 1e-4 s against drivers 1 and 2
-//   rly_long stats --mode paper|improved [--seeds 1-20] [--t 30000] [--code flight|ref] [--jobs 2]
+//   rly_long stats --mode paper|improved [--seeds 1-20] [--t 30000] [--code flight|ref] [--jobs 2] [--csv DIR]
 //                                                       S5 / S7: per-seed freeze, k_t, late mean envelope
-//   rly_long sweep [--from 0.28] [--to 0.40] [--step 0.001] [--t 20000] [--code ref|flight] [--jobs 2]
+//   rly_long sweep [--from 0.28] [--to 0.40] [--step 0.001] [--t 20000] [--code ref|flight] [--jobs 2] [--csv DIR]
 //                                                       S6 (continuous law) / S4, S6 spot checks (flight)
 //   rly_long paper-errors                               §3.1 and §5.5 demonstrations
 #include <algorithm>
@@ -49,8 +49,17 @@ int level_of(std::uint8_t c)
     }
 }
 
+struct WinRow {            // one closed window: what the plots of a(t) and k_t(t) per run need
+    std::uint32_t j = 0;
+    double t_end_s = 0.0;
+    double abar_rad = 0.0;
+    double kt_in = 0.0, kt_next = 0.0;
+    int phase = 0, event = 0;
+};
+
 struct SeedResult {
     std::uint32_t seed = 0;
+    std::vector<WinRow> windows;
     bool frozen = false;            // frozen at the end
     double t_first_freeze_s = -1.0;
     double kt_final = 0.0;
@@ -87,6 +96,8 @@ SeedResult fly_flight(rly_params_t p, double t_end_s, double t_late_s)
             windows = s.tlm.n_windows;
             const double t_end_win = static_cast<double>(k + 1) * h;
             const double kt = s.tlm.win.kt_in_q16 / 65536.0;
+            r.windows.push_back({s.tlm.win.j, t_end_win, s.tlm.win.abar_q40 / kQ40, kt,
+                                 s.tlm.win.kt_next_q16 / 65536.0, s.tlm.win.phase, s.tlm.win.event});
             r.kt_min = std::min(r.kt_min, kt);
             r.kt_max = std::max(r.kt_max, kt);
             if (r.t_first_freeze_s < 0.0 &&
@@ -150,6 +161,8 @@ SeedResult fly_ref(const rly_params_t &p, double t_end_s, double t_late_s)
         const ref::WindowRecord &w = a.windows[j];
         const double t_end_win = static_cast<double>(j + 1) * p.win_ticks * law.h_s;
         const double kt = w.adapt.kt_in_force_q16 / 65536.0;
+        r.windows.push_back({static_cast<std::uint32_t>(j), t_end_win, w.abar_rad, kt, w.adapt.kt_next_q16 / 65536.0,
+                             static_cast<int>(w.adapt.phase), static_cast<int>(w.adapt.event)});
         r.kt_min = std::min(r.kt_min, kt);
         r.kt_max = std::max(r.kt_max, kt);
         if (r.t_first_freeze_s < 0.0 && (w.adapt.event == ref::AdaptEvent::FREEZE_SETTLED ||
@@ -195,8 +208,36 @@ double quantile(std::vector<double> v, double q)
     return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
+// --csv DIR: DIR/<mode>_<code>_runs.csv (one row per seed) and DIR/<mode>_<code>_windows.csv (one row
+// per window and seed), read by tools/relay/long_plots.py.
+void write_stats_csv(const std::string &dir, const std::string &tag, const std::vector<SeedResult> &res)
+{
+    const std::string runs = dir + "/" + tag + "_runs.csv", wins = dir + "/" + tag + "_windows.csv";
+    std::FILE *f = std::fopen(runs.c_str(), "w");
+    std::FILE *g = std::fopen(wins.c_str(), "w");
+    if (f == nullptr || g == nullptr) {
+        std::fprintf(stderr, "rly_long: cannot write %s or %s\n", runs.c_str(), wins.c_str());
+        if (f != nullptr) { std::fclose(f); }
+        if (g != nullptr) { std::fclose(g); }
+        return;
+    }
+    std::fprintf(f, "seed,frozen,t_first_freeze_s,kt_final,kt_min,kt_max,abar_late_rad\n");
+    std::fprintf(g, "seed,j,t_end_s,abar_rad,kt_in,kt_next,phase,event\n");
+    for (const SeedResult &r : res) {
+        std::fprintf(f, "%u,%d,%.1f,%.6f,%.6f,%.6f,%.6e\n", r.seed, r.frozen ? 1 : 0, r.t_first_freeze_s, r.kt_final,
+                     r.kt_min, r.kt_max, r.abar_late);
+        for (const WinRow &w : r.windows) {
+            std::fprintf(g, "%u,%u,%.1f,%.6e,%.6f,%.6f,%d,%d\n", r.seed, w.j, w.t_end_s, w.abar_rad, w.kt_in,
+                         w.kt_next, w.phase, w.event);
+        }
+    }
+    std::fclose(f);
+    std::fclose(g);
+    std::printf("wrote %s, %s\n", runs.c_str(), wins.c_str());
+}
+
 int cmd_stats(const std::string &mode, std::uint32_t s0, std::uint32_t s1, double t_end, const std::string &code,
-              unsigned jobs)
+              unsigned jobs, const std::string &csv)
 {
     rly_params_t base = (mode == "paper") ? RLY_TBL_PAPER : RLY_TBL_DEFAULT;
     std::vector<SeedResult> res(s1 - s0 + 1);
@@ -227,6 +268,9 @@ int cmd_stats(const std::string &mode, std::uint32_t s0, std::uint32_t s1, doubl
                 frozen, res.size(), early, out, quantile(ktf, 0.5), ktf.empty() ? 0.0 : *std::min_element(ktf.begin(), ktf.end()),
                 ktf.empty() ? 0.0 : *std::max_element(ktf.begin(), ktf.end()), quantile(ab, 0.5), quantile(ab, 0.9),
                 *std::max_element(ab.begin(), ab.end()));
+    if (!csv.empty()) {
+        write_stats_csv(csv, mode + "_" + code, res);
+    }
     return 0;
 }
 
@@ -247,7 +291,8 @@ double abar_at(double kt, double t_end, const std::string &code)
     return r.abar_late;
 }
 
-int cmd_sweep(double from, double to, double step, double t_end, const std::string &code, unsigned jobs)
+int cmd_sweep(double from, double to, double step, double t_end, const std::string &code, unsigned jobs,
+              const std::string &csv)
 {
     std::vector<double> kts;
     for (double k = from; k <= to + 1e-9; k += step) {
@@ -262,6 +307,20 @@ int cmd_sweep(double from, double to, double step, double t_end, const std::stri
         std::printf(" %.4f  %.4g\n", kts[i], ab[i]);
     }
     std::printf("wall %.1f s\n", wall_s(t0));
+    if (!csv.empty()) {
+        const std::string path = csv + "/sweep_" + code + ".csv";
+        std::FILE *f = std::fopen(path.c_str(), "w");
+        if (f == nullptr) {
+            std::fprintf(stderr, "rly_long: cannot write %s\n", path.c_str());
+            return 1;
+        }
+        std::fprintf(f, "kt,abar_rad\n");
+        for (std::size_t i = 0; i < kts.size(); ++i) {
+            std::fprintf(f, "%.4f,%.6e\n", kts[i], ab[i]);
+        }
+        std::fclose(f);
+        std::printf("wrote %s\n", path.c_str());
+    }
     return 0;
 }
 
@@ -360,7 +419,7 @@ int main(int argc, char **argv)
     CLI::App app{"rly_long: the relay's long runs and statistics (spec 20 §2.3, §5, §7)"};
     app.require_subcommand(1);
     double t_end = 0.0, from = 0.28, to = 0.40, step = 0.001;
-    std::string mode = "paper", code = "flight", sweep_code = "ref", seeds = "1-20";
+    std::string mode = "paper", code = "flight", sweep_code = "ref", seeds = "1-20", csv;
     unsigned jobs = 2;
     CLI::App *ex = app.add_subcommand("exactness", "S1: RK4 against drivers 1 and 2 (relay_exactness)");
     ex->add_option("--t", t_end, "run length [s] (default 20000)");
@@ -370,6 +429,8 @@ int main(int argc, char **argv)
     st->add_option("--t", t_end, "run length [s] (default 30000)");
     st->add_option("--code", code)->check(CLI::IsMember({"flight", "ref"}));
     st->add_option("--jobs", jobs);
+    st->add_option("--csv", csv, "directory for <mode>_<code>_runs.csv and _windows.csv (tools/relay/long_plots.py)")
+        ->check(CLI::ExistingDirectory);
     CLI::App *sw = app.add_subcommand("sweep", "S6/S4: abar(k_t) at fixed k_t");
     sw->add_option("--from", from);
     sw->add_option("--to", to);
@@ -377,6 +438,8 @@ int main(int argc, char **argv)
     sw->add_option("--t", t_end, "run length [s] (default 20000)");
     sw->add_option("--code", sweep_code)->check(CLI::IsMember({"flight", "ref"}));
     sw->add_option("--jobs", jobs);
+    sw->add_option("--csv", csv, "directory for sweep_<code>.csv (tools/relay/long_plots.py)")
+        ->check(CLI::ExistingDirectory);
     CLI::App *pe = app.add_subcommand("paper-errors", "§3.1 and §5.5 demonstrations");
     CLI11_PARSE(app, argc, argv);
     if (*ex) {
@@ -388,10 +451,10 @@ int main(int argc, char **argv)
             std::fprintf(stderr, "rly_long: --seeds A-B with 1 <= A <= B\n");
             return 2;
         }
-        return cmd_stats(mode, a, b, t_end > 0.0 ? t_end : 30000.0, code, jobs);
+        return cmd_stats(mode, a, b, t_end > 0.0 ? t_end : 30000.0, code, jobs, csv);
     }
     if (*sw) {
-        return cmd_sweep(from, to, step, t_end > 0.0 ? t_end : 20000.0, sweep_code, jobs);
+        return cmd_sweep(from, to, step, t_end > 0.0 ? t_end : 20000.0, sweep_code, jobs, csv);
     }
     (void)pe;
     return cmd_paper_errors();
