@@ -177,15 +177,21 @@ class Copy:
                        "--out", os.path.join(self.fsw, "gen"), "--no-host"], cwd=args.src)
         if rc != 0:
             raise SystemExit("selftest: cannot generate the mission dispatch: %s" % out)
+        # The flight library: everything but the board (fsw/target) and the modules' benchmark
+        # images (fsw/<m>/bench/, built against the board by fsw/target/CMakeLists.txt).
         self.sources = sorted(p for p in glob.glob(os.path.join(self.fsw, "**", "*.c"), recursive=True)
-                              if not p.startswith(os.path.join(self.fsw, "target") + os.sep))
+                              if self._library(p))
         hdr_dirs = {os.path.dirname(p) for p in glob.glob(os.path.join(self.fsw, "**", "*.h"), recursive=True)
-                    if not p.startswith(os.path.join(self.fsw, "target") + os.sep)}
+                    if self._library(p)}
         self.incs = ["-I" + d for d in sorted(hdr_dirs | {self.fsw})]
         self.guard = os.path.join(self.fsw, "fx", "fx_guard.h")
         self.cflags = shlex.split(args.cflags)
         self.lib = None
         self.injected = None
+
+    def _library(self, path):
+        parts = os.path.relpath(path, self.fsw).split(os.sep)
+        return parts[0] != "target" and not (len(parts) > 2 and parts[1] == "bench")
 
     def inject(self, case):
         if case == "clean":
