@@ -66,7 +66,7 @@ public:
         if (!m) {
             return;
         }
-        r.check_keys(m, "relay", {"m_u_radps2", "m_eps_radps2", "xbar0_rad", "xbardot0_radps", "x_max_rad", "modes",
+        r.check_keys(m, "relay", {"m_u_radps2", "m_eps_radps2", "xbar0_rad", "xbardot0_radps", "x_max_rad", "abar_from_s", "modes",
                                   "sensor", "actuator"});
         if (m["m_u_radps2"]) { b.model.m_u_radps2 = r.number(m["m_u_radps2"], "relay.m_u_radps2", 1e-9, 1e-1); }
         if (m["m_eps_radps2"]) { b.model.m_eps_radps2 = r.number(m["m_eps_radps2"], "relay.m_eps_radps2", 0.0, 1e-1); }
@@ -75,6 +75,7 @@ public:
             b.state0.xbardot_radps = r.number(m["xbardot0_radps"], "relay.xbardot0_radps", -0.01, 0.01);
         }
         if (m["x_max_rad"]) { b.x_max_rad = r.number(m["x_max_rad"], "relay.x_max_rad", 1e-4, 0.5); }
+        if (m["abar_from_s"]) { b.abar_from_s = r.number(m["abar_from_s"], "relay.abar_from_s", 0.0, 1e7); }
         if (m["modes"]) { parse_modes(m["modes"], r, b); }
         if (const YAML::Node g = m["sensor"]) {
             r.check_keys(g, "relay.sensor", {"noise_rad", "bias_rad", "seed"});

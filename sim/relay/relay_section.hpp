@@ -4,7 +4,7 @@
 //
 //   mission: relay
 //   plant: relay (the default), period_us (default 1000)
-//   relay: {m_u_radps2, m_eps_radps2, xbar0_rad, xbardot0_radps, x_max_rad,
+//   relay: {m_u_radps2, m_eps_radps2, xbar0_rad, xbardot0_radps, x_max_rad, abar_from_s,
 //           modes: [{omega_radps, k, xt0_rad, xtdot0_radps}, ...],
 //           sensor: {noise_rad, bias_rad, seed}, actuator: {scale_error, delay_ticks}}
 //   fsw: {table: rly_default | rly_paper | rly_fixed_031 | rly_fixed_03389}
@@ -37,6 +37,9 @@ struct RelaySetup {
     std::uint64_t seed = 1u;
     double scale_error = 0.0;              // applied moment = (1 + scale_error) m
     std::uint32_t delay_ticks = 0u;        // 0 or 1: transport delay of the command
+    // Metrics only (the plant ignores it): the summary adds the true mean envelope over
+    // [abar_from_s, end] (abar_true_from_rad), e.g. 20 000 s for S5/S7's late mean; < 0: not reported.
+    double abar_from_s = -1.0;
 };
 
 struct RelayScenario final : MissionScenario {

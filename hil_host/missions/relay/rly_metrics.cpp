@@ -17,7 +17,8 @@ constexpr double kQ40 = 1099511627776.0;   // 2^40
 }  // namespace
 
 RelayMetrics::RelayMetrics(const sim::Scenario &s)
-    : h_s_(static_cast<double>(s.period_us) * 1e-6)
+    : h_s_(static_cast<double>(s.period_us) * 1e-6),
+      abar_from_s_(s.mission_part<sim::RelayScenario>().body.abar_from_s)
 {
     const TlmLayout &l = tlm_layout(iface_mission("RELAY"));
     i_health_ = l.at("rly_health");
@@ -49,6 +50,10 @@ void RelayMetrics::on_truth(const gnc::sim_truth_t &t)
     if (ts >= kLateFromS) {
         sum_true_ += sum;
         ++n_true_;
+    }
+    if (abar_from_s_ >= 0.0 && ts >= abar_from_s_) {
+        sum_from_ += sum;
+        ++n_from_;
     }
     truth_us_ = t.utime;
     ++truth_n_;
@@ -157,6 +162,10 @@ void RelayMetrics::summary(Summary &s) const
     s.add_int("level_changes", static_cast<std::int64_t>(level_changes));
     s.add("abar_true_late_rad", n_true_ ? sum_true_ / static_cast<double>(n_true_) : 0.0, "%.6g");
     s.add("abar_fsw_late_rad", n_fsw_ ? sum_fsw_ / static_cast<double>(n_fsw_) : 0.0, "%.6g");
+    if (abar_from_s_ >= 0.0) {
+        s.add("abar_from_s", abar_from_s_, "%.1f");
+        s.add("abar_true_from_rad", n_from_ ? sum_from_ / static_cast<double>(n_from_) : 0.0, "%.6g");
+    }
     s.add("env_err_max_lsb", env_err_max_lsb, "%.3f");
     s.add_int("env_pairs", static_cast<std::int64_t>(env_pairs));
     s.add_int("main_pulses", static_cast<std::int64_t>(pulses));

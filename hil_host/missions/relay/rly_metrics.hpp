@@ -46,6 +46,9 @@ private:
     double h_s_;
     std::int64_t truth_us_ = -1;
     std::array<double, 4> a_true_{};
+    double abar_from_s_;                           // RelaySetup::abar_from_s (< 0: not reported)
+    double sum_from_ = 0.0;
+    std::uint64_t n_from_ = 0;
     double sum_true_ = 0.0, sum_fsw_ = 0.0;
     std::uint64_t n_true_ = 0, n_fsw_ = 0;
     int last_level_ = 0;
