@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "bridge.hpp"
+#include "bridge_node.hpp"
 #include "channels.hpp"
 #include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/fsw_cmd_v2_t.hpp"
@@ -41,16 +42,17 @@ void deliver_commands(const sim::Scenario &scn, std::size_t &next, std::uint64_t
 
 }  // namespace
 
-InprocResult run_batch(const sim::Scenario &scn, bool progress)
+InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra, bool progress)
 {
     if (scn.faults.any()) {
         throw std::invalid_argument("the batch driver flies fault-free scenarios only (faults act on the transport): "
                                     "fly '" + scn.name + "' with sil run");
     }
-    if (!scn.fsw.table_file.empty()) {
-        throw std::invalid_argument("the batch driver boots the scenario's built-in table; a table file is an "
-                                    "upload: fly '" + scn.name + "' with sil run");
-    }
+    // A table file and --upload images go through the upload path exactly as over memq: the
+    // sealed chunks reach the bridge core before the first frame at or after their time, and the
+    // acks reach the metrics (run_uploads checks every image first: a refused one flies nothing).
+    const std::vector<Upload> uploads = run_uploads(scn, extra);
+    std::vector<bool> sent(uploads.size(), false);
     std::unique_ptr<bridge::InProcessFswBackend> be = make_fixed_backend(scn);
     bridge::Bridge core(*be, run_limits(scn));
     MetricsTap mt(nullptr, scn);
@@ -66,6 +68,18 @@ InprocResult run_batch(const sim::Scenario &scn, bool progress)
     const auto w0 = std::chrono::steady_clock::now();
     for (std::uint64_t k = 0; k < n; ++k) {
         const std::int64_t utime = plant->utime_us();
+        for (std::size_t i = 0; i < uploads.size(); ++i) {
+            if (!sent[i] && static_cast<double>(utime) * 1e-6 >= uploads[i].t_s) {
+                for (const std::vector<std::uint8_t> &m : upload_messages(uploads[i], utime)) {
+                    bool bad = false;
+                    const int na = table_upload_to_ack(core, m.data(), m.size(), out.data(), out.size(), &bad);
+                    if (na > 0) {
+                        mt.feed(kChTblAck, out.data(), static_cast<std::size_t>(na));
+                    }
+                }
+                sent[i] = true;
+            }
+        }
         deliver_commands(scn, next_cmd, k, utime, static_cast<double>(utime) * 1e-6, core, out);
         const sim::SensorFrame f = plant->sense();
         int len = encode_truth(*plant, k, buf);

@@ -6,8 +6,9 @@
 //
 // A fault-free memq SIL run and a batch run of the same scenario publish identical command and
 // telemetry streams (the summary's stream digests): CTest sil_batch_matches_lcm proves it per
-// mission. Not for runs that need the transport: a scenario with faults, an upload or a table file
-// is refused (std::invalid_argument, nothing flown) — fly those with `sil run`.
+// mission. Table files and uploads take the same upload path (sealed chunks through the core, acks to
+// the metrics; CTest sil_batch_table_file_matches_memq). Not for runs that need the transport: a
+// scenario with faults is refused (std::invalid_argument, nothing flown) — fly it with `sil run`.
 #ifndef HIL_SIL_BATCH_HPP
 #define HIL_SIL_BATCH_HPP
 
@@ -17,7 +18,8 @@ namespace sil {
 
 // The result has the shape of run_inproc's: plant summary, core and mission metrics, bridge
 // counters, summary keys (transport "batch"), wall time.
-InprocResult run_batch(const sim::Scenario &scn, bool progress = false);
+// extra: --upload images, after the scenario's table file (if any).
+InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra = {}, bool progress = false);
 
 }  // namespace sil
 

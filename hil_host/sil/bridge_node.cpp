@@ -48,16 +48,15 @@ void BridgeNode::on_sensor_cb(const lcm_recv_buf_t *rb, const char *, void *user
     }
 }
 
-void BridgeNode::on_table_cb(const lcm_recv_buf_t *rb, const char *, void *user)
+int table_upload_to_ack(bridge::Bridge &core, const std::uint8_t *data, std::size_t len, std::uint8_t *ack_buf,
+                        std::size_t ack_cap, bool *bad)
 {
-    auto *self = static_cast<BridgeNode *>(user);
     gnc::table_upload_v2_t m;
     bridge::TableAck a{};
-    const bridge::Wire w = bridge::decode(static_cast<const std::uint8_t *>(rb->data), rb->data_size, m);
-    if (w != bridge::Wire::Ok || m.n < 0 || m.n > 256) {
-        ++self->bad_uploads_;
-        bridge::sat_inc((w == bridge::Wire::BadCrc) ? self->core_.counters_mut().crc_rej
-                                                    : self->core_.counters_mut().malformed);
+    const bridge::Wire w = bridge::decode(data, len, m);
+    *bad = w != bridge::Wire::Ok || m.n < 0 || m.n > 256;
+    if (*bad) {
+        bridge::sat_inc((w == bridge::Wire::BadCrc) ? core.counters_mut().crc_rej : core.counters_mut().malformed);
         a.result = bridge::kTableRejected;
         a.reason = 1;   // FSW_TBL_R_CHUNK_LEN: the chunk itself is unusable
     } else {
@@ -69,7 +68,7 @@ void BridgeNode::on_table_cb(const lcm_recv_buf_t *rb, const char *, void *user)
         c.offset = m.offset;
         c.n = m.n;
         c.data = m.data;
-        a = self->core_.on_table(c);
+        a = core.on_table(c);
     }
     gnc::table_ack_t ack{};
     ack.utime = a.utime;
@@ -78,7 +77,18 @@ void BridgeNode::on_table_cb(const lcm_recv_buf_t *rb, const char *, void *user)
     ack.result = a.result;
     ack.reason = a.reason;
     ack.bytes_received = a.bytes_received;
-    const int n = ack.encode(self->buf_.data(), 0, static_cast<int>(self->buf_.size()));
+    return ack.encode(ack_buf, 0, static_cast<int>(ack_cap));
+}
+
+void BridgeNode::on_table_cb(const lcm_recv_buf_t *rb, const char *, void *user)
+{
+    auto *self = static_cast<BridgeNode *>(user);
+    bool bad = false;
+    const int n = table_upload_to_ack(self->core_, static_cast<const std::uint8_t *>(rb->data), rb->data_size,
+                                      self->buf_.data(), self->buf_.size(), &bad);
+    if (bad) {
+        ++self->bad_uploads_;
+    }
     if (n > 0) { lcm_publish(self->lcm_, kChTblAck, self->buf_.data(), static_cast<unsigned>(n)); }
 }
 

@@ -13,6 +13,13 @@
 
 namespace sil {
 
+// One table_upload_v2_t message as received (sealed bytes) through the core: a message that does not
+// decode is counted (crc_rej or malformed; *bad set) and refused as FSW_TBL_R_CHUNK_LEN. Writes the
+// encoded table_ack_t to ack_buf and returns its length (< 0: did not fit). BridgeNode publishes it;
+// the batch driver hands it to the metrics.
+int table_upload_to_ack(bridge::Bridge &core, const std::uint8_t *data, std::size_t len, std::uint8_t *ack_buf,
+                        std::size_t ack_cap, bool *bad);
+
 class BridgeNode {
 public:
     BridgeNode(lcm_t *lcm, bridge::Bridge &core);

@@ -3,7 +3,7 @@
 //   sil run    --scenario F [--url memq://|udpm://...] [--log F] [--summary F] [--summary-json F]
 //              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...] [--determinism-check] [--batch]
 //              --batch: no transport (batch.hpp): the same plant, packets, bridge core, fsw_step and
-//              metrics without LCM, for long runs; fault-free scenarios with built-in tables only
+//              metrics without LCM, for long runs; fault-free scenarios (table files and uploads too)
 //              plant + bridge (fixed-point flight code, or the mission's double reference) + log
 //              tap in ONE process on one lcm_t.
 //   sil plant  --scenario F --url udpm://... [--summary F] [--summary-json F] [--ready-timeout-ms N] [--progress]
@@ -291,7 +291,7 @@ try {
                   "fly the run twice and compare the command/telemetry streams (the determinism verdict)")
         ->disable_flag_override();
     run->add_flag("--batch", batch, "no transport: the in-process lock-step driver (same plant, packets, bridge, "
-                                    "flight code and metrics; no LCM, no log, no faults or uploads)")
+                                    "flight code, uploads and metrics; no LCM, no log, no faults)")
         ->disable_flag_override();
 
     CLI::App *plant = app.add_subcommand("plant", "the plant node of a separate-process run");
@@ -354,15 +354,15 @@ try {
             check_run(scn, url, fsw, uploads, log, summary, summary_json, o);
             o.progress = progress;
             o.determinism_check = det_check;
-            if (batch && (!url.empty() || !log.empty() || !uploads.empty() || det_check || fsw != "fixed")) {
-                throw UsageError("--batch flies without a transport: no --url, --log, --upload, --determinism-check "
+            if (batch && (!url.empty() || !log.empty() || det_check || fsw != "fixed")) {
+                throw UsageError("--batch flies without a transport: no --url, --log, --determinism-check "
                                  "or --fsw other than fixed");
             }
-            if (batch && (scn.faults.any() || !scn.fsw.table_file.empty())) {
-                throw UsageError("--batch: scenario '" + scn.name + "' has faults or a table file, which act through "
-                                 "the transport; fly it without --batch");
+            if (batch && scn.faults.any()) {
+                throw UsageError("--batch: scenario '" + scn.name + "' has faults, which act on the transport; fly it "
+                                 "without --batch");
             }
-            const sil::InprocResult r = batch ? sil::run_batch(scn, progress) : sil::run_inproc(scn, o);
+            const sil::InprocResult r = batch ? sil::run_batch(scn, o.uploads, progress) : sil::run_inproc(scn, o);
             std::cout << r.summary.text();
             write_summary(r.summary, summary, summary_json);
             if (!r.loss_of_control.empty()) {

@@ -68,8 +68,9 @@ Upload upload_from_file(const std::string &path, double t_s)
     return u;
 }
 
-void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
+std::vector<std::vector<std::uint8_t>> upload_messages(const Upload &u, std::int64_t utime_us)
 {
+    std::vector<std::vector<std::uint8_t>> msgs;
     std::vector<std::uint8_t> buf(1024);
     const std::size_t total = u.image.size();
     // Table id and revision from the image's own header (fsw_table.h): the chunks can never
@@ -90,8 +91,16 @@ void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
         }
         const int len = bridge::encode(m, buf.data(), buf.size());   // sealed with its crc32
         if (len > 0) {
-            lcm_publish(lcm, kChTblUp, buf.data(), static_cast<unsigned>(len));
+            msgs.emplace_back(buf.begin(), buf.begin() + len);
         }
+    }
+    return msgs;
+}
+
+void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us)
+{
+    for (const std::vector<std::uint8_t> &m : upload_messages(u, utime_us)) {
+        lcm_publish(lcm, kChTblUp, m.data(), static_cast<unsigned>(m.size()));
     }
 }
 

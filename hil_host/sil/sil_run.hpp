@@ -87,7 +87,9 @@ std::string loss_of_control(const sim::Scenario &scn, const PlantSummary &p);
 // The most consecutive missed commands a run may have: floor(deadline_ms / period).
 std::uint64_t missed_run_bound(const sim::Scenario &scn);
 
-// Publishes one table image in chunks on GNC_TBL_UP.
+// One table image as its table_upload_v2_t messages (256-byte chunks, each sealed), in order.
+std::vector<std::vector<std::uint8_t>> upload_messages(const Upload &u, std::int64_t utime_us);
+// Publishes them on GNC_TBL_UP.
 void publish_upload(lcm_t *lcm, const Upload &u, std::int64_t utime_us);
 
 // The plant's keys, the determinism verdict (same_streams: the result of comparing two

@@ -1,5 +1,6 @@
 """CTest campaign_rly_s7_matches_rly_long: the S5/S7 statistics are measured two ways — the campaign
-runner flying `sil run` (plant node, bridge, executive, fsw_step over memq) and rly_long (the flight
+runner flying `sil run --batch` (plant, sealed packets, bridge, executive, fsw_step; the memq streams)
+and rly_long (the flight
 module alone against the same exact plant, 3e7 ticks in seconds). This checks that they are the same
 experiment: over tests/relay/campaign_s7_short.yaml (seeds 1-2, 2000 s, IMPROVED) every run passes,
 and per seed the final k_t is equal (both print it to 1e-6 of the Q0.16 value: the same k_t decisions),

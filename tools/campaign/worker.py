@@ -1,5 +1,6 @@
 """One campaign run: the base scenario with run i's inputs, flown by `sil run` (the in-process
-lock-step driver: plant, bridge and fsw_step on LCM's in-process memq provider, no sockets), its
+lock-step driver: plant, bridge and fsw_step on LCM's in-process memq provider, no sockets; with
+`driver: batch`, `sil run --batch`: the same streams without LCM), its
 summary.json read back. Runs on a Dask worker: everything it needs travels in the Campaign object
 and the sil path, so a worker on another machine needs only the project built at the same path
 and its venv (README "Campaigns")."""
@@ -52,7 +53,8 @@ def run_one(c, i, sil):
             rec["in." + p] = v
         sj = os.path.join(tmp, "summary.json")
         try:
-            r = subprocess.run([sil, "run", "--scenario", path, "--summary-json", sj], stdout=subprocess.DEVNULL,
+            drv = ["--batch"] if c.driver == "batch" else []
+            r = subprocess.run([sil, "run", "--scenario", path, "--summary-json", sj] + drv, stdout=subprocess.DEVNULL,
                                stderr=subprocess.PIPE, text=True, timeout=c.timeout_s)
         except subprocess.TimeoutExpired:
             rec.update(status="timeout", reason="no result within %g s" % c.timeout_s)
