@@ -7,6 +7,11 @@
  * Commit rule (spec 20 §8): a validated table becomes active at a window boundary (or at once
  * outside the mission mode); in the mode the copy is re-anchored under the new constants at its
  * current state and k_t is held inside the new limits (rly_retable), the law's state is kept.
+ * A table whose geometry (epsilon, gamma, the modes) differs also waits for the law to be in W+,
+ * W- or COAST (level off, left through W) at a window boundary, so no pulse or brake ever runs
+ * across a moved deadband edge. The
+ * table is applied whole (one revision in force, no second 384-B parameter set held back);
+ * fsw/relay/README.md says why this replaces the spec's "geometry at the next W entry".
  * Telecommand RESET_COUNTERS clears the module's counters and sticky health.
  */
 #include "rly_mission.h"
@@ -63,10 +68,29 @@ bool rly_mis_load(rly_mis_t *b, const uint8_t *pl, uint32_t len, uint32_t rev, b
     return ok;
 }
 
+/* Same deadband edges and the same modal copy (the constants rly_step's tests and the envelope
+   copy use; q0/p0 only seed a run and f_q64 only checks dphi). */
+static bool same_geometry(const rly_params_t *a, const rly_params_t *c)
+{
+    bool same = (a->eps_q24 == c->eps_q24) && (a->gamma_q24 == c->gamma_q24) && (a->n_modes == c->n_modes);
+    uint32_t i;
+    for (i = 0u; i < RLY_MAX_MODES; i++) {
+        same = same && (a->dphi_bam64[i] == c->dphi_bam64[i]) && (a->cu_q40[i] == c->cu_q40[i]) &&
+               (a->ce_q40[i] == c->ce_q40[i]);
+    }
+    return same;
+}
+
 bool rly_mis_commit_ok(const rly_mis_t *b, bool in_mode)
 {
-    /* w_n == 0: the last step closed a window (or the law has not run yet) */
-    return (!in_mode) || (!b->have_p) || (b->s.w_n == 0u);
+    /* b->cand: the candidate the executive holds READY (rly_mis_check decoded it; nothing else
+       writes it until the commit's rly_mis_load). w_n == 0: the last step closed a window. */
+    bool ok = (!in_mode) || (!b->have_p);
+    if ((!ok) && (b->s.w_n == 0u)) {
+        ok = same_geometry(&b->p, &b->cand) || (b->s.st == RLY_ST_W_POS) || (b->s.st == RLY_ST_W_NEG) ||
+             (b->s.st == RLY_ST_COAST);
+    }
+    return ok;
 }
 
 void rly_mis_ranges(const rly_mis_t *b, fsw_range_t *r)

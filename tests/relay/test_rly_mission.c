@@ -7,6 +7,7 @@
  */
 #include "fsw_exec.h"
 #include "rly_tables.h"
+#include <stdio.h>
 #include "ut.h"
 
 #define TC_RESET FSW_TC_ID(FSW_MISSION_RELAY, RLY_CMD_RESET_COUNTERS)
@@ -144,7 +145,9 @@ UT_TEST(telecommands_in_the_mission_namespace_only)
 /* An upload with gamma below 2 sensor LSB is refused by the loader naming field 3 (gamma_q24);
    one with gamma >= eps by the relation (gamma + 1 <= eps); the active table and the law go on.
    A good one (k_t0 changed) waits for the window boundary and commits there, keeping the law's
-   state and k_t (the in-flight rule of rly_mission.c). */
+   state and k_t (the in-flight rule of rly_mission.c). One that moves the deadband edge (eps)
+   waits further: through every window boundary the law passes in a pulse or brake, committing at
+   the first boundary it passes in W. */
 UT_TEST(uploads_refused_naming_the_field_and_committed_at_a_window_boundary)
 {
     rly_params_t p = RLY_TBL_FIXED_031;
@@ -173,7 +176,7 @@ UT_TEST(uploads_refused_naming_the_field_and_committed_at_a_window_boundary)
     /* a good one: pending until the step after the 10th (the window closes on tick 10) */
     p = RLY_TBL_FIXED_031;
     p.win_ticks = 10u;
-    p.eps_q24 = 9000;
+    p.kt0_q16 = (uint16_t)(p.kt0_q16 + 1u);
     n = rly_table_encode(&p, 3u, g_img, (uint32_t)sizeof(g_img));
     UT_UEQ(upload(g_img, n, 3u, &why), FSW_OK);
     for (k = 2; k <= 10; k++) {
@@ -188,6 +191,36 @@ UT_TEST(uploads_refused_naming_the_field_and_committed_at_a_window_boundary)
     UT_UEQ(g_oa.tlm.n_tbl_acc, 1u);
     UT_UEQ(g_oa.tlm.m.relay.st, RLY_ST_R_MAIN);         /* the pulse under way was kept */
     UT_UEQ(g_oa.tlm.m.relay.n, 10u);
+    UT_UEQ(g_oa.tlm.m.relay.kt_q16, RLY_TBL_FIXED_031.kt0_q16);   /* k_t held, inside the new limits */
+    /* geometry: eps moved. x held at 8000 (above the brake edge eps - gamma) keeps R_MAIN running to
+       tick 2999; x = 0 from tick 3000 starts the brake, k_t tau1 ~ 926 ticks, then W+ holds (inside
+       the deadband). About 390 10-tick window boundaries pass in the pulse and brake; the table
+       waits through all of them and commits at the first boundary in W+. */
+    p.eps_q24 = 9000;
+    n = rly_table_encode(&p, 4u, g_img, (uint32_t)sizeof(g_img));
+    UT_UEQ(upload(g_img, n, 4u, &why), FSW_OK);
+    {
+        uint32_t nw = g_oa.tlm.m.relay.n_windows;
+        uint8_t st_at_boundary = RLY_ST_R_MAIN;
+        uint32_t boundaries_not_w = 0u;
+        for (k = 12; (k < 20000) && (g_oa.tlm.tbl_revision == 3u); k++) {
+            in = frame(k, (k < 3000) ? 8000 : 0);
+            fsw_step(&g_a, &in, &g_oa);
+            if ((g_oa.tlm.tbl_revision == 3u) && (g_oa.tlm.m.relay.n_windows != nw)) {
+                nw = g_oa.tlm.m.relay.n_windows;
+                st_at_boundary = g_oa.tlm.m.relay.st;   /* the state the next step's commit test sees */
+                if ((st_at_boundary != RLY_ST_W_POS) && (st_at_boundary != RLY_ST_W_NEG)) {
+                    boundaries_not_w++;
+                }
+            }
+        }
+        printf("geometry table: committed at tick %ld after %u boundaries outside W\n", (long)k, boundaries_not_w);
+        UT_UEQ(g_oa.tlm.tbl_revision, 4u);
+        UT_UEQ(g_oa.tlm.n_tbl_acc, 2u);
+        UT_TRUE((st_at_boundary == RLY_ST_W_POS) || (st_at_boundary == RLY_ST_W_NEG));   /* committed from W */
+        UT_TRUE(boundaries_not_w > 350u);   /* (3000 - 11 + 926) / 10 ~ 390 boundaries in pulse and brake */
+        UT_TRUE((k > 3900) && (k < 4000));  /* committed within one window of the brake's end */
+    }
 }
 
 /* F3: the module holds no absolute time; the app's counters started at 2^32 - 10^4 fly the same
