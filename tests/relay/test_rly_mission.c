@@ -7,7 +7,6 @@
  */
 #include "fsw_exec.h"
 #include "rly_tables.h"
-#include <stdio.h>
 #include "ut.h"
 
 #define TC_RESET FSW_TC_ID(FSW_MISSION_RELAY, RLY_CMD_RESET_COUNTERS)
@@ -214,7 +213,12 @@ UT_TEST(uploads_refused_naming_the_field_and_committed_at_a_window_boundary)
                 }
             }
         }
-        printf("geometry table: committed at tick %ld after %u boundaries outside W\n", (long)k, boundaries_not_w);
+        /* ut_put_*: the target image has no libc printf */
+        ut_puts("geometry table: committed at tick ");
+        ut_put_i64((int64_t)k);
+        ut_puts(" after ");
+        ut_put_u64((uint64_t)boundaries_not_w);
+        ut_puts(" boundaries outside W\n");
         UT_UEQ(g_oa.tlm.tbl_revision, 4u);
         UT_UEQ(g_oa.tlm.n_tbl_acc, 2u);
         UT_TRUE((st_at_boundary == RLY_ST_W_POS) || (st_at_boundary == RLY_ST_W_NEG));   /* committed from W */
