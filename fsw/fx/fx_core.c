@@ -151,7 +151,7 @@ int32_t fx_convert64(int64_t a, uint32_t q_from, uint32_t q_to, fx_status_t *st)
         s |= FX_ST_ARG;
         r = 0;
     } else if (q_from >= q_to) {
-        r = fx_sat32(fx_shr_rnd64(a, q_from - q_to, &s), &s);
+        r = fx_rshift_sat_i(a, q_from - q_to, &s);
     } else {
         r = shl64_sat32(a, q_to - q_from, &s);
     }
@@ -245,7 +245,8 @@ int32_t fx_mul(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_s
         if (qp >= qr) {
             uint32_t n = qp - qr;
             /* n may reach 80; beyond 63 the rounded result is 0 since |p| < 2^63 / 2. */
-            r = (n > 63u) ? 0 : fx_sat32(fx_shr_rnd64(p, n, st), st);
+            /* inlined twin: out of line, the shift cost two calls per multiply (fx_inline.h) */
+            r = (n > 63u) ? 0 : fx_rshift_sat_i(p, n, st);
         } else {
             r = shl64_sat32(p, qr - qp, st);
         }
