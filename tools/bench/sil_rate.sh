@@ -3,7 +3,8 @@
 # fsw_step) over 10^4 steps, beside the raw LCM round-trip ceiling on the same transports and
 # machine, measured in the same run. Median and minimum of REPS repetitions.
 #
-#   tools/bench/sil_rate.sh [BUILD_DIR] [REPS]      default build/host, 5
+#   tools/bench/sil_rate.sh [BUILD_DIR] [REPS]      default build/host-release (the Release preset:
+#                                                   benchmark figures are Release figures), 5
 #
 # Writes bench/sil_rate.md (and prints it). Transports: memq (one process), udpm with both nodes
 # in one process, udpm as separate processes (tools/sil/run_udpm.sh, process start-up and the
@@ -11,11 +12,11 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$ROOT"
-B=${1:-build/host}
+B=${1:-build/host-release}
 REPS=${2:-5}
 SIL="$B/hil_host/sil/sil"
 PP="$B/hil_host/tools/lcm_pingpong"
-[ -x "$SIL" ] && [ -x "$PP" ] || { echo "sil_rate: build $B first (cmake --build --preset host)" >&2; exit 1; }
+[ -x "$SIL" ] && [ -x "$PP" ] || { echo "sil_rate: build $B first (cmake --preset host-release && cmake --build --preset host-release; build/host for a Debug figure)" >&2; exit 1; }
 mkdir -p bench
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
