@@ -106,7 +106,8 @@ def main():
         t = threading.Thread(target=reader)
         t.start()
         t.join()
-        os.killpg(qemu.pid, 9) if qemu.poll() is None else None
+        if qemu.poll() is None:
+            os.killpg(qemu.pid, 9)   # enough calls seen: the rest of the bench is not needed
         qemu.wait()
     if not att.per_call:
         sys.exit(f"insn_profile: no complete call of {a.func} after skipping {a.skip}")
