@@ -14,6 +14,7 @@ between is counted against the function it belongs to (inlined code counts to it
   --calls M   attribute M calls after those, then stop QEMU (default 10)
   --min K     attribute only calls of at least K instructions (separates a function's paths, e.g.
               Newton iterations that solve from those that only evaluate the residual)
+  --max K     and of at most K instructions
 
 Prints the instructions per call (min / median / max; the same count as the SysTick method up to
 the call instruction itself) and a table of instructions per call by function, largest first.
@@ -44,8 +45,9 @@ def entry_address(elf, func):
 
 
 class Attributor:
-    def __init__(self, entry, skip, calls, min_insns):
-        self.entry, self.skip, self.calls, self.min_insns = entry, skip, calls, min_insns
+    def __init__(self, entry, skip, calls, min_insns, max_insns):
+        self.entry, self.skip, self.calls = entry, skip, calls
+        self.min_insns, self.max_insns = min_insns, max_insns
         self.inside = False
         self.caller = None
         self.prev = None
@@ -65,8 +67,9 @@ class Attributor:
                 self.cur = collections.Counter({name: 1})
         elif name == self.caller:
             self.inside = False
-            if self.n_calls > self.skip and sum(self.cur.values()) >= self.min_insns:
-                self.per_call.append(sum(self.cur.values()))
+            n = sum(self.cur.values())
+            if self.n_calls > self.skip and self.min_insns <= n <= self.max_insns:
+                self.per_call.append(n)
                 self.by_func.update(self.cur)
         else:
             self.cur[name] += 1
@@ -81,11 +84,12 @@ def main():
     ap.add_argument("--skip", type=int, default=0)
     ap.add_argument("--calls", type=int, default=10)
     ap.add_argument("--min", type=int, default=0, dest="min_insns")
+    ap.add_argument("--max", type=int, default=2**62, dest="max_insns")
     a = ap.parse_args()
     entry = entry_address(a.elf, a.func)
     if entry is None:
         sys.exit(f"insn_profile: {a.func} not found in {a.elf}")
-    att = Attributor(entry, a.skip, a.calls, a.min_insns)
+    att = Attributor(entry, a.skip, a.calls, a.min_insns, a.max_insns)
     with tempfile.TemporaryDirectory() as td:
         fifo = os.path.join(td, "trace")
         os.mkfifo(fifo)
@@ -112,7 +116,7 @@ def main():
     if not att.per_call:
         sys.exit(f"insn_profile: no complete call of {a.func} after skipping {a.skip}")
     n = len(att.per_call)
-    sel = f" of >= {a.min_insns} instructions" if a.min_insns else ""
+    sel = f" of {a.min_insns}..{a.max_insns} instructions" if (a.min_insns or a.max_insns < 2**62) else ""
     print(f"{a.func} on {a.machine}: {n} calls{sel} after {a.skip} skipped; instructions per call "
           f"min {min(att.per_call)} median {statistics.median(att.per_call)} max {max(att.per_call)}")
     print()
