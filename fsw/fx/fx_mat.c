@@ -25,15 +25,9 @@ static int32_t dot_rounded(const int32_t *a, uint32_t sa, const int32_t *b, uint
     uint32_t i;
     int32_t r;
     /* The inlined twins (fx_inline.h): out of line, the add and the final shift were calls costing
-       more than the multiply-accumulate itself (obs_step spent a third of its time in them). The
-       bound is clamped once and the overflow leaves by a break, so the loop tests one condition
-       per term (about 10 instructions a term on Cortex-M3 instead of 18). */
-    uint32_t nn = (n < FX_NMAX) ? n : FX_NMAX;
-    for (i = 0u; i < nn; i++) {
+       more than the multiply-accumulate itself (obs_step spent a third of its time in them). */
+    for (i = 0u; (i < n) && (i < FX_NMAX) && (s == 0u); i++) {
         acc = fx_add64_sat_i(acc, (int64_t)a[(size_t)i * sa] * (int64_t)b[(size_t)i * sb], &s);
-        if (s != 0u) {
-            break;
-        }
     }
     if (s != 0u) {
         *st |= FX_ST_ACC_OVF | ((acc > 0) ? FX_ST_SAT_HI : FX_ST_SAT_LO);
