@@ -167,6 +167,12 @@ void     fx_matmul(const int32_t *a, uint32_t qa, const int32_t *b, uint32_t qb,
 /* Exact int64 sum of a[i] * b[i], i < n (n <= FX_NMAX); on overflow ACC_OVF and the int64
  * extreme in that direction. For callers that align several sums and round once. */
 int64_t  fx_dot_acc(const int32_t *a, const int32_t *b, uint32_t n, fx_status_t *st);
+/* round(sum_{i<n} a[i] b[i*sb] + w v) by `shift` (<= 62) to a saturated int32, one rounding: a dot
+ * product with one wide term, for a column whose values outgrow int32 while its products still fit
+ * the exact int64 sum (obs: the regressor column of F_s). Overflow as in fx_dot: ACC_OVF and the
+ * int32 extreme. Bit-identical to fx_dot over n + 1 terms whenever w fits int32. */
+int32_t  fx_dot_wide(const int32_t *a, const int32_t *b, uint32_t sb, uint32_t n, int64_t w, int32_t v,
+                     uint32_t shift, fx_status_t *st);
 /* v * 2^n exactly (n <= 62); ACC_OVF and the int64 extreme if it does not fit. */
 int64_t  fx_shl64_chk(int64_t v, uint32_t n, fx_status_t *st);
 /* y = a + b, y = a - b element-wise (same Q), saturating. */

@@ -12,6 +12,25 @@
 #define P2_30_I64 INT64_C(1073741824)       /* 2^30 */
 #define P2_60_I64 INT64_C(1152921504606846976)   /* 2^60 */
 
+/* int64 with the value of u mod 2^64 (two's complement), without an implementation-defined
+   conversion. */
+static int64_t u2s64(uint64_t u)
+{
+    int64_t r;
+    if (u <= (uint64_t)INT64_MAX) {
+        r = (int64_t)u;
+    } else {
+        uint64_t c = UINT64_MAX - u;   /* < 2^63 */
+        r = -(int64_t)c - 1;
+    }
+    return r;
+}
+
+static uint64_t mag64(int64_t v)
+{
+    return (v < 0) ? ((uint64_t)0 - (uint64_t)v) : (uint64_t)v;
+}
+
 /*
  * Exact sum of n products a[i*sa] * b[i*sb], rounded by `shift` to a saturated int32. On the
  * first int64 overflow the sum stops (it no longer means anything), ACC_OVF is raised and the
@@ -106,6 +125,54 @@ int64_t fx_dot_acc(const int32_t *a, const int32_t *b, uint32_t n, fx_status_t *
     return acc;
 }
 
+/* w v exactly, or ACC_OVF and the int64 extreme of the product's sign when it does not fit. */
+static int64_t mul_wide(int64_t w, int32_t v, fx_status_t *st)
+{
+    int64_t r;
+    if ((w >= (int64_t)INT32_MIN) && (w <= (int64_t)INT32_MAX)) {
+        r = w * (int64_t)v;   /* |r| <= 2^62: the common case, one 32 x 32 multiply */
+    } else {
+        bool neg = (w < 0) != (v < 0);
+        uint64_t mw = mag64(w);
+        uint64_t mv = mag64((int64_t)v);                 /* <= 2^31 */
+        uint64_t hi = (mw >> 32) * mv;                   /* <= 2^62 */
+        uint64_t lo = (mw & UINT64_C(0xFFFFFFFF)) * mv;  /* < 2^63 */
+        uint64_t lim = neg ? ((uint64_t)INT64_MAX + 1u) : (uint64_t)INT64_MAX;
+        /* hi <= 2^31: hi 2^32 <= 2^63 and + lo < 2^64, no wrap (hi = 2^31, lo = 0 is -2^63). */
+        if ((hi > UINT64_C(0x80000000)) || (((hi << 32) + lo) > lim)) {
+            *st |= FX_ST_ACC_OVF;
+            r = neg ? INT64_MIN : INT64_MAX;
+        } else {
+            uint64_t m = (hi << 32) + lo;
+            r = neg ? u2s64((uint64_t)0 - m) : (int64_t)m;
+        }
+    }
+    return r;
+}
+
+int32_t fx_dot_wide(const int32_t *a, const int32_t *b, uint32_t sb, uint32_t n, int64_t w, int32_t v,
+                    uint32_t shift, fx_status_t *st)
+{
+    fx_status_t s = 0u;
+    int32_t r = 0;
+    if ((n > FX_NMAX) || (shift > 62u)) {
+        *st |= FX_ST_ARG;
+    } else {
+        int64_t acc = mul_wide(w, v, &s);
+        uint32_t i;
+        for (i = 0u; (i < n) && (i < FX_NMAX) && (s == 0u); i++) {
+            acc = fx_add64_sat_i(acc, (int64_t)a[i] * (int64_t)b[(size_t)i * sb], &s);
+        }
+        if (s != 0u) {
+            *st |= FX_ST_ACC_OVF | ((acc > 0) ? FX_ST_SAT_HI : FX_ST_SAT_LO);
+            r = (acc > 0) ? INT32_MAX : INT32_MIN;
+        } else {
+            r = fx_rshift_sat_i(acc, shift, st);
+        }
+    }
+    return r;
+}
+
 int64_t fx_shl64_chk(int64_t v, uint32_t n, fx_status_t *st)
 {
     int64_t r = 0;
@@ -167,25 +234,6 @@ typedef struct {
     uint64_t hi;
     uint64_t lo;
 } u128_t;
-
-/* int64 with the value of u mod 2^64 (two's complement), without an implementation-defined
-   conversion. */
-static int64_t u2s64(uint64_t u)
-{
-    int64_t r;
-    if (u <= (uint64_t)INT64_MAX) {
-        r = (int64_t)u;
-    } else {
-        uint64_t c = UINT64_MAX - u;   /* < 2^63 */
-        r = -(int64_t)c - 1;
-    }
-    return r;
-}
-
-static uint64_t mag64(int64_t v)
-{
-    return (v < 0) ? ((uint64_t)0 - (uint64_t)v) : (uint64_t)v;
-}
 
 /* Bits of v (0 for 0): a bounded binary search. */
 static uint32_t bitlen64(uint64_t v)

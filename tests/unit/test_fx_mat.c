@@ -268,6 +268,52 @@ UT_TEST(recip_div_exact)
     }
 }
 
+/* fx_dot_wide: exact wide products, the int32 fast path equal to fx_dot, overflow and arguments. */
+UT_TEST(dot_wide_cases)
+{
+    static const int32_t a[3] = {3, -5, 7};
+    static const int32_t b[6] = {11, 99, 13, 99, -17, 99};   /* stride 2: 11, 13, -17 */
+    static const int32_t aw[4] = {3, -5, 7, 123456789};
+    static const int32_t bw[4] = {11, 13, -17, -987654};
+    fx_status_t st = 0u;
+    fx_status_t s2 = 0u;
+    /* w fits int32: the same as fx_dot over four terms (3 * 11 - 5 * 13 - 7 * 17 + w v). */
+    UT_EQ(fx_dot_wide(a, b, 2u, 3u, 123456789, -987654, 20u, &st), fx_dot(aw, 20u, bw, 0u, 4u, 0u, &s2));
+    UT_UEQ(st, 0u);
+    UT_UEQ(s2, 0u);
+    /* w = 2^40 + 3 (beyond int32) times -2^20: -2^60 - 3 2^20, plus 33 - 65 - 119 = -151; shifted by
+       40: -2^20 - 3 2^-20 - 151 2^-40, rounded half away from zero: -2^20. One more: 2^40 + 2^39
+       times 3 = 2^41 + 2^40 + 2^39 (exact), by 40: 3.5 -> 4. */
+    UT_EQ(fx_dot_wide(a, b, 2u, 3u, ((int64_t)1 << 40) + 3, -(1 << 20), 40u, &st), -(1 << 20));
+    UT_EQ(fx_dot_wide(a, b, 2u, 0u, ((int64_t)1 << 40) + ((int64_t)1 << 39), 3, 40u, &st), 5);
+    UT_UEQ(st, 0u);
+    /* (2^33 - 1) (2^30 - 1) + 0: exact, 2^63 - 2^33 - 2^30 + 1 < 2^63; by 33: 2^30 - 1 after rounding. */
+    UT_EQ(fx_dot_wide(a, b, 2u, 0u, ((int64_t)1 << 33) - 1, (1 << 30) - 1, 33u, &st), (1 << 30) - 1);
+    UT_UEQ(st, 0u);
+    /* INT64_MIN * -1 = 2^63: does not fit; INT64_MIN * 1 fits, with a term that takes it out. */
+    UT_EQ(fx_dot_wide(a, b, 2u, 0u, INT64_MIN, -1, 62u, &st), INT32_MAX);
+    UT_UEQ(st, FX_ST_ACC_OVF | FX_ST_SAT_HI);
+    st = 0u;
+    UT_EQ(fx_dot_wide(a, b, 2u, 0u, INT64_MIN, 1, 62u, &st), -2);
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_dot_wide(&a[1], b, 2u, 1u, INT64_MIN, 1, 62u, &st), INT32_MIN);   /* -2^63 - 55 */
+    UT_UEQ(st, FX_ST_ACC_OVF | FX_ST_SAT_LO);
+    st = 0u;
+    /* 2^34 * 2^31 - 1 ... the wide product itself overflows: 2^34 * (-2^31) = -2^65. */
+    UT_EQ(fx_dot_wide(a, b, 2u, 3u, (int64_t)1 << 34, INT32_MIN, 40u, &st), INT32_MIN);
+    UT_UEQ(st, FX_ST_ACC_OVF | FX_ST_SAT_LO);
+    st = 0u;
+    /* w = 0 and v = 0: the plain dot (33 - 65 - 119 = -151). */
+    UT_EQ(fx_dot_wide(a, b, 2u, 3u, 0, 0, 0u, &st), -151);
+    UT_EQ(fx_dot_wide(a, b, 2u, 3u, -((int64_t)1 << 50), 0, 0u, &st), -151);
+    UT_UEQ(st, 0u);
+    UT_EQ(fx_dot_wide(a, b, 2u, FX_NMAX + 1u, 0, 0, 0u, &st), 0);
+    UT_UEQ(st, FX_ST_ARG);
+    st = 0u;
+    UT_EQ(fx_dot_wide(a, b, 2u, 3u, 0, 0, 63u, &st), 0);
+    UT_UEQ(st, FX_ST_ARG);
+}
+
 UT_TEST(dot_acc_and_shl64)
 {
     static const int32_t a[3] = {INT32_MIN, 3, -5};
@@ -583,7 +629,7 @@ int main(void)
 {
     UT_CASES(cases) = {
         UT_CASE(dot_matvec_matmul_random), UT_CASE(accumulator_overflow), UT_CASE(kernel_args),
-        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact), UT_CASE(dot_acc_and_shl64),
+        UT_CASE(solve_exact_cases), UT_CASE(solve_symmetry_and_determinism), UT_CASE(recip_div_exact), UT_CASE(dot_acc_and_shl64), UT_CASE(dot_wide_cases),
         UT_CASE(solve_fast_exact_cases), UT_CASE(solve_fast_vs_solve), UT_CASE(solve_fast_symmetry),
         UT_CASE(solve_bound_large_x_reproducer), UT_CASE(recip_div_int32_min_edge), UT_CASE(recip_ranges),
     };

@@ -86,6 +86,74 @@ UT_TEST(kernels_vs_exact)
            (unsigned long long)checked, ovf_exact, ovf_partial);
 }
 
+/* fx_dot_wide: the same contract as fx_dot, with one int64 term w v. Full-range operands, w of
+   every magnitude (int32, beyond it, the int64 extremes), shift in [0, 62]; and whenever w fits
+   int32 it equals fx_dot over the n + 1 terms (the observer's bit-identity in range rests on it). */
+UT_TEST(dot_wide_vs_exact)
+{
+    uint64_t seed = 4242u;
+    uint32_t it;
+    uint32_t ovf_exact = 0u;
+    uint32_t ovf_partial = 0u;
+    uint64_t checked = 0u;
+    uint64_t same_as_dot = 0u;
+    for (it = 0u; it < 400000u; it++) {
+        int32_t a[FX_NMAX + 1u];
+        int32_t b[(FX_NMAX + 1u) * 3u];
+        uint32_t n = it % 7u;   /* 0..6 regular terms */
+        uint32_t sb = 1u + (it % 3u);
+        uint32_t sh = (uint32_t)(ut_rng_next(&seed) % 63u);
+        uint64_t r = ut_rng_next(&seed);
+        int64_t w = (int64_t)(r >> (1u + (uint32_t)(ut_rng_next(&seed) % 63u)));
+        int32_t v = rnd32(&seed);
+        uint32_t i;
+        i128 s;
+        fx_status_t st = 0u;
+        int32_t got;
+        if ((r & 1u) != 0u) {
+            w = -w;
+        }
+        if ((it % 101u) == 0u) {
+            w = ((it % 2u) != 0u) ? INT64_MIN : INT64_MAX;
+        }
+        s = (i128)w * v;
+        for (i = 0u; i < n; i++) {
+            a[i] = rnd32(&seed);
+            b[i * sb] = rnd32(&seed);
+            s += (i128)a[i] * b[i * sb];
+        }
+        got = fx_dot_wide(a, b, sb, n, w, v, sh, &st);
+        if (s > INT64_MAX || s < INT64_MIN) {
+            UT_CHECK((st & FX_ST_ACC_OVF) != 0u);
+            UT_CHECK(got == INT32_MAX || got == INT32_MIN);
+            ovf_exact++;
+        } else if ((st & FX_ST_ACC_OVF) != 0u) {
+            ovf_partial++;   /* the wide product alone, or a partial sum, left int64 */
+        } else {
+            i128 want = o_shr(s, sh);
+            want = (want > INT32_MAX) ? INT32_MAX : ((want < INT32_MIN) ? INT32_MIN : want);
+            UT_CHECK_EQ(got, (int64_t)want);
+            checked++;
+            if ((w >= INT32_MIN) && (w <= INT32_MAX) && (sb == 1u) && (sh <= 40u)) {
+                fx_status_t s2 = 0u;
+                a[n] = (int32_t)w;
+                b[n] = v;
+                int32_t d = fx_dot(a, sh, b, 0u, n + 1u, 0u, &s2);
+                if ((s2 & FX_ST_ACC_OVF) == 0u) {   /* fx_dot adds w v last: a partial sum may leave int64 */
+                    UT_CHECK_EQ(d, got);
+                    UT_CHECK_EQ(s2, st);
+                    same_as_dot++;
+                }
+            }
+        }
+    }
+    printf("fx_dot_wide: %llu exact sums correctly rounded (%llu of them equal to fx_dot over n + 1 "
+           "terms); %u overflowing sums all flagged ACC_OVF; %u flagged for a partial overflow\n",
+           (unsigned long long)checked, (unsigned long long)same_as_dot, ovf_exact, ovf_partial);
+    UT_CHECK(same_as_dot > 1000u);
+    UT_CHECK(ovf_exact > 100u);
+}
+
 /* fx_recip_div: round(a 2^k / d) for full-range int64 a, any non-zero d, k in [0, 62]. */
 UT_TEST(recip_div_vs_exact)
 {
@@ -734,7 +802,7 @@ UT_TEST(solve_singular_and_near_singular)
 int main(void)
 {
     UT_CASES(cases) = {
-        UT_CASE(kernels_vs_exact), UT_CASE(recip_div_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_fast_conditioned_systems),
+        UT_CASE(kernels_vs_exact), UT_CASE(dot_wide_vs_exact), UT_CASE(recip_div_vs_exact), UT_CASE(solve_conditioned_systems), UT_CASE(solve_fast_conditioned_systems),
         UT_CASE(solve_bound_mixed_scales), UT_CASE(solve_singular_and_near_singular),
     };
     return UT_RUN("fx_mat_sweep", cases);
