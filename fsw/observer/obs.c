@@ -41,20 +41,31 @@ static uint32_t valid_q(uint32_t q)
     return ((q >= MIN_MATRIX_Q) && (q <= FX_Q_MAX)) ? 1u : 0u;
 }
 
+/* Exact sum_j a_j x_j [qa + qx] + sum_k b_k v_k [qb + qx], in q(*qs) = q(max(qa, qb) + qx). */
+static int64_t affine_sum(const int32_t *a, uint32_t qa, const int32_t *x, uint32_t nx,
+                          const int32_t *b, uint32_t qb, const int32_t *v, uint32_t nv,
+                          uint32_t qx, uint32_t *qs, fx_status_t *st)
+{
+    uint32_t qm = (qa > qb) ? qa : qb;
+    int64_t s1 = fx_shl64_chk(fx_dot_acc(a, x, nx, st), qm - qa, st);
+    int64_t s2 = fx_shl64_chk(fx_dot_acc(b, v, nv, st), qm - qb, st);
+    fx_status_t acc = 0u;
+    int64_t s = fx_add64_sat(s1, s2, &acc);
+    *st |= acc;
+    *qs = qm + qx;
+    return s;
+}
+
 /* y = round(sum_j a_j x_j [qa + qx] + sum_k b_k v_k [qb + qx]) in qy, one rounding. */
 static int32_t affine_row(const int32_t *a, uint32_t qa, const int32_t *x, uint32_t nx,
                           const int32_t *b, uint32_t qb, const int32_t *v, uint32_t nv,
                           uint32_t qx, uint32_t qy, fx_status_t *st)
 {
-    uint32_t qm = (qa > qb) ? qa : qb;
-    int64_t s1 = fx_shl64_chk(fx_dot_acc(a, x, nx, st), qm - qa, st);
-    int64_t s2 = fx_shl64_chk(fx_dot_acc(b, v, nv, st), qm - qb, st);
+    uint32_t qs;
+    int64_t s = affine_sum(a, qa, x, nx, b, qb, v, nv, qx, &qs, st);
     int32_t y = 0;
-    fx_status_t acc = 0u;
-    int64_t s = fx_add64_sat(s1, s2, &acc);
-    *st |= acc;
-    if ((qm + qx) >= qy) {
-        y = fx_rshift_sat(s, (qm + qx) - qy, st);
+    if (qs >= qy) {
+        y = fx_rshift_sat(s, qs - qy, st);
     } else {
         *st |= FX_ST_ARG;
     }
@@ -77,7 +88,10 @@ static void build_model(obs_state_t *s, const obs_params_t *p, fx_status_t *st)
 }
 
 /* The scaled transition matrix F_s = S^-1 [[Phi, f], [0, 1]] S in q28. f = Phi_k x + Gamma_k u
-   is formed directly in its scaled Q so no precision is lost to the power-of-two scaling. */
+   is formed directly in its scaled Q so no precision is lost to the power-of-two scaling, and is
+   held in int64: the scaling multiplies the omega rows by 2^(ls_k - ls_w) = 4096, which on M-phys
+   takes f_s past int32's q28 range (8) once |mu| passes 0.18 rad, while the products f_s P_s still
+   fit the exact int64 sums of predict (fx_dot_wide; README "Formats and ranges"). */
 static void build_f(obs_state_t *s, const obs_params_t *p, const int32_t *u_q29, fx_status_t *st)
 {
     uint32_t i;
@@ -85,17 +99,23 @@ static void build_f(obs_state_t *s, const obs_params_t *p, const int32_t *u_q29,
     for (i = 0u; i < OBS_NX; i++) {
         /* f_s,i = f_i 2^(ls_k - ls_i): f_i in q(28 + ls_k - ls_i) reads as f_s,i in q28. */
         int32_t m = (int32_t)p->ls[OBS_NX] - (int32_t)p->ls[i];
+        uint32_t qy = qfmt((int32_t)OBS_F_Q + m);
+        uint32_t qs;
+        int64_t f;
         for (j = 0u; j < OBS_NX; j++) {
             /* F_s,ij = Phi_ij 2^(ls_j - ls_i): Phi_ij in q_phi0 reads as q(q_phi0 - ls_j + ls_i). */
             int32_t qf = (int32_t)p->q_phi0 - ((int32_t)p->ls[j] - (int32_t)p->ls[i]);
-            s->f_q28[(i * OBS_NZ) + j] = fx_convert(s->phi_q[(i * OBS_NX) + j], qfmt(qf), OBS_F_Q, st);
+            s->f_q28[(i * OBS_NX) + j] = fx_convert(s->phi_q[(i * OBS_NX) + j], qfmt(qf), OBS_F_Q, st);
         }
-        s->f_q28[(i * OBS_NZ) + OBS_NX] = affine_row(&p->phik[(size_t)i * OBS_NX], p->q_phik, s->x_q29, OBS_NX,
-                                                     &p->gamk[(size_t)i * OBS_NU], p->q_gamk, u_q29, OBS_NU,
-                                                     OBS_X_Q, qfmt((int32_t)OBS_F_Q + m), st);
-    }
-    for (j = 0u; j < OBS_NZ; j++) {
-        s->f_q28[(OBS_NX * OBS_NZ) + j] = (j == OBS_NX) ? FX_Q_INT(1, 28) : 0;
+        f = affine_sum(&p->phik[(size_t)i * OBS_NX], p->q_phik, s->x_q29, OBS_NX,
+                       &p->gamk[(size_t)i * OBS_NU], p->q_gamk, u_q29, OBS_NU, OBS_X_Q, &qs, st);
+        if (qs >= qy) {
+            f = fx_shr_rnd64(f, qs - qy, st);
+        } else {
+            *st |= FX_ST_ARG;
+            f = 0;
+        }
+        s->fk_q28[i] = f;
     }
 }
 
@@ -144,10 +164,17 @@ static uint32_t predict(obs_state_t *s, const obs_params_t *p, const int32_t *u_
     }
     if (p->estimator == OBS_EST_EKF) {
         /* T = F P (q28 x q30 -> q30); P+ = T F^T on the upper triangle only, mirrored, so P
-           stays exactly symmetric; then + Q on the diagonal. F's kappa row is exactly e_kappa^T
-           (build_f), so T's kappa row is P's and P+'s kappa column is T's: those products by
-           1.0 are exact and are copied, not computed (14 of the 77 dot products; bit-identical). */
-        fx_matmul(s->f_q28, OBS_F_Q, s->p_q30, OBS_P_Q, OBS_NX, OBS_NZ, OBS_NZ, s->t_q30, OBS_P_Q, st);
+           stays exactly symmetric; then + Q on the diagonal. Each entry is one exact int64 sum
+           with the kappa column's wide term, rounded once (fx_dot_wide). F's kappa row is exactly
+           e_kappa^T, so T's kappa row is P's and P+'s kappa column is T's: those products by 1.0
+           are exact and are copied, not computed (14 of the 77 dot products). */
+        for (i = 0u; i < OBS_NX; i++) {
+            uint32_t j;
+            for (j = 0u; j < OBS_NZ; j++) {
+                s->t_q30[(i * OBS_NZ) + j] = fx_dot_wide(&s->f_q28[(size_t)i * OBS_NX], &s->p_q30[j], OBS_NZ, OBS_NX,
+                                                         s->fk_q28[i], s->p_q30[(OBS_NX * OBS_NZ) + j], OBS_F_Q, st);
+            }
+        }
         for (i = 0u; i < OBS_NZ; i++) {
             s->t_q30[(OBS_NX * OBS_NZ) + i] = s->p_q30[(OBS_NX * OBS_NZ) + i];
         }
@@ -156,8 +183,8 @@ static uint32_t predict(obs_state_t *s, const obs_params_t *p, const int32_t *u_
             for (j = i; j < OBS_NZ; j++) {
                 int32_t v = s->t_q30[((size_t)i * OBS_NZ) + OBS_NX];
                 if (j < OBS_NX) {
-                    v = fx_dot(&s->t_q30[(size_t)i * OBS_NZ], OBS_P_Q, &s->f_q28[(size_t)j * OBS_NZ], OBS_F_Q, OBS_NZ,
-                               OBS_P_Q, st);
+                    v = fx_dot_wide(&s->f_q28[(size_t)j * OBS_NX], &s->t_q30[(size_t)i * OBS_NZ], 1u, OBS_NX,
+                                    s->fk_q28[j], s->t_q30[((size_t)i * OBS_NZ) + OBS_NX], OBS_F_Q, st);
                 }
                 if (i == j) {
                     v = fx_add_sat(v, p->qd_q30[i], st);
@@ -173,6 +200,50 @@ static uint32_t predict(obs_state_t *s, const obs_params_t *p, const int32_t *u_
 
 /* ------------------------------------------------------------------ measurement update */
 
+/* The update of an accepted sample on channel c: gain L_s = P_s[:, c] / S_n, state correction,
+   P_s <- P_s - L_s P_s[c, :]. */
+static void apply_update(obs_state_t *s, const obs_params_t *p, uint32_t c, int32_t e, const fx_recip_t *rs,
+                         fx_status_t *st)
+{
+    int32_t l_q28[OBS_NZ];
+    int32_t row_q30[OBS_NZ];
+    uint32_t j;
+    uint32_t k;
+    for (j = 0u; j < OBS_NZ; j++) {
+        /* L_s = P_s[:, c] / S_n (q30 / q30 -> q28): one divide for the channel. */
+        l_q28[j] = fx_recip_div((int64_t)s->p_q30[(j * OBS_NZ) + c], rs, OBS_F_Q, st);
+        row_q30[j] = s->p_q30[(c * OBS_NZ) + j];
+    }
+    for (j = 0u; j < OBS_NZ; j++) {
+        /* SI correction L_j e 2^(ls_j - ls_c), formed in the Q of the state it corrects:
+           the product L e held with qst + ls_j - ls_c fraction bits is that value in qst. */
+        uint32_t qst = state_q(j);
+        int32_t qr = ((int32_t)qst + (int32_t)p->ls[j]) - (int32_t)p->ls[c];
+        int32_t dx = fx_mul(l_q28[j], OBS_F_Q, e, OBS_X_Q, qfmt(qr), st);
+        if (j < OBS_NX) {
+            s->x_q29[j] = fx_add_sat(s->x_q29[j], dx, st);
+        } else if (!s->kappa_frozen) {
+            s->kappa_q28 = fx_add_sat(s->kappa_q28, dx, st);
+        } else {
+            /* frozen: kappa keeps its value */
+        }
+    }
+    /* P_s <- P_s - L_s P_s[c, :] (symmetric form: upper triangle, mirrored). */
+    for (j = 0u; j < OBS_NZ; j++) {
+        for (k = j; k < OBS_NZ; k++) {
+            /* Frozen kappa is the gain L_kappa = 0: the Joseph form of that suboptimal gain
+               equals this update everywhere except P_kk, which keeps its value (the x rows
+               of L are unchanged, and L_kappa P_cx = P_kc L_x^T in the cross terms). */
+            if (!(s->kappa_frozen && (j == OBS_NX) && (k == OBS_NX))) {
+                int32_t v = fx_sub_sat(s->p_q30[(j * OBS_NZ) + k],
+                                       fx_mul(l_q28[j], OBS_F_Q, row_q30[k], OBS_P_Q, OBS_P_Q, st), st);
+                s->p_q30[(j * OBS_NZ) + k] = v;
+                s->p_q30[(k * OBS_NZ) + j] = v;
+            }
+        }
+    }
+}
+
 /* One scalar update on gyro channel c (state c). Returns health bits. */
 static uint32_t update_channel(obs_state_t *s, const obs_params_t *p, uint32_t c, int32_t y_q29,
                                obs_out_t *out, fx_status_t *st)
@@ -186,11 +257,16 @@ static uint32_t update_channel(obs_state_t *s, const obs_params_t *p, uint32_t c
     int32_t sn = fx_add_sat(s->p_q30[(c * OBS_NZ) + c], p->r_q30, st);
     fx_recip_t rs;
     fx_status_t mon = 0u;   /* d^2 is telemetry: its own clamp is not a flight saturation */
-    int32_t d2;
+    int32_t d2 = INT32_MAX;
+    bool weighable = (sn > 0);
     out->tlm.e_q29[c] = e;
     fx_recip_init(&rs, sn, st);
-    /* d^2 = e_s^2 / S_n with e_s = e 2^-ls_c: e in q29 reads as e_s in q(29 + ls_c). */
-    {
+    /* S_n = P_cc + R <= 0: P_s is no longer a covariance (only after it has left its formats, with
+       fx bits raised). Such a sample cannot be weighed: it is never used, reads as d^2 = INT32_MAX
+       and counts as a rejection under the gate, so a stuck gyro far outside the design range still
+       ends in INNOV_PERSIST (tests/app/test_fsw_exec.c). */
+    if (weighable) {
+        /* d^2 = e_s^2 / S_n with e_s = e 2^-ls_c: e in q29 reads as e_s in q(29 + ls_c). */
         int32_t k = ((int32_t)OBS_D2_Q + (int32_t)OBS_P_Q) - (2 * ((int32_t)OBS_X_Q + (int32_t)p->ls[c]));
         d2 = fx_recip_div((int64_t)e * (int64_t)e, &rs, qfmt(k), &mon);
     }
@@ -199,47 +275,13 @@ static uint32_t update_channel(obs_state_t *s, const obs_params_t *p, uint32_t c
         h |= OBS_H_INNOV_HIGH;
         fx_cnt_inc(&s->tlm.n_innov);
     }
-    if ((p->d2_reject != 0u) && (d2 > p->d2_max_q16)) {
+    if ((p->d2_reject != 0u) && ((d2 > p->d2_max_q16) || !weighable)) {
         fx_cnt_inc(&s->rej_run[c]);
-    } else {
-        int32_t l_q28[OBS_NZ];
-        int32_t row_q30[OBS_NZ];
-        uint32_t j;
-        uint32_t k;
-        for (j = 0u; j < OBS_NZ; j++) {
-            /* L_s = P_s[:, c] / S_n (q30 / q30 -> q28): one divide for the channel. */
-            l_q28[j] = fx_recip_div((int64_t)s->p_q30[(j * OBS_NZ) + c], &rs, OBS_F_Q, st);
-            row_q30[j] = s->p_q30[(c * OBS_NZ) + j];
-        }
-        for (j = 0u; j < OBS_NZ; j++) {
-            /* SI correction L_j e 2^(ls_j - ls_c), formed in the Q of the state it corrects:
-               the product L e held with qst + ls_j - ls_c fraction bits is that value in qst. */
-            uint32_t qst = state_q(j);
-            int32_t qr = ((int32_t)qst + (int32_t)p->ls[j]) - (int32_t)p->ls[c];
-            int32_t dx = fx_mul(l_q28[j], OBS_F_Q, e, OBS_X_Q, qfmt(qr), st);
-            if (j < OBS_NX) {
-                s->x_q29[j] = fx_add_sat(s->x_q29[j], dx, st);
-            } else if (!s->kappa_frozen) {
-                s->kappa_q28 = fx_add_sat(s->kappa_q28, dx, st);
-            } else {
-                /* frozen: kappa keeps its value */
-            }
-        }
+    } else if (weighable) {
+        apply_update(s, p, c, e, &rs, st);
         s->rej_run[c] = 0u;
-        /* P_s <- P_s - L_s P_s[c, :] (symmetric form: upper triangle, mirrored). */
-        for (j = 0u; j < OBS_NZ; j++) {
-            for (k = j; k < OBS_NZ; k++) {
-                /* Frozen kappa is the gain L_kappa = 0: the Joseph form of that suboptimal gain
-                   equals this update everywhere except P_kk, which keeps its value (the x rows
-                   of L are unchanged, and L_kappa P_cx = P_kc L_x^T in the cross terms). */
-                if (!(s->kappa_frozen && (j == OBS_NX) && (k == OBS_NX))) {
-                    int32_t v = fx_sub_sat(s->p_q30[(j * OBS_NZ) + k],
-                                           fx_mul(l_q28[j], OBS_F_Q, row_q30[k], OBS_P_Q, OBS_P_Q, st), st);
-                    s->p_q30[(j * OBS_NZ) + k] = v;
-                    s->p_q30[(k * OBS_NZ) + j] = v;
-                }
-            }
-        }
+    } else {
+        /* monitor only and not weighable: not used, not counted */
     }
     return h;
 }

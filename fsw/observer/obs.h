@@ -139,7 +139,8 @@ typedef struct {
     bool     kappa_frozen;            /* kappa adaptation frozen by the rejection level */
     bool     rej_safe;                /* latched: a channel persistently rejected; zero command */
     /* scratch (caller-owned so no function needs a large stack frame) */
-    int32_t  f_q28[OBS_NZ * OBS_NZ];
+    int32_t  f_q28[OBS_NX * OBS_NX];  /* F_s's x block (its kappa row is e_kappa^T, never stored) */
+    int64_t  fk_q28[OBS_NX];          /* F_s's kappa column (regressor), q28 in int64: up to |64| */
     int32_t  t_q30[OBS_NZ * OBS_NZ];
     int32_t  phi_q[OBS_NX * OBS_NX];  /* Phi(kappa) in q_phi0 */
     int32_t  gam_q[OBS_NX * OBS_NU];  /* Gamma(kappa) in q_gam0 */

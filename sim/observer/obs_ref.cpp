@@ -1,6 +1,7 @@
 #include "observer/obs_ref.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace ref {
 namespace {
@@ -88,7 +89,8 @@ ObsState initial_state(const obs_params_t &p, const std::array<int32_t, 2> &y_cn
 ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_t, 2> &y_cnt, bool per_axis_clip)
 {
     ObsStepOut out{{0, 0}, false, 0u, {{0.0, 0.0}}, Eigen::Matrix<double, 7, 2>::Zero(),
-                   Eigen::Matrix<double, 7, 7>::Zero(), Eigen::Matrix<double, 6, 2>::Zero()};
+                   Eigen::Matrix<double, 7, 7>::Zero(), Eigen::Matrix<double, 6, 2>::Zero(),
+                   Eigen::Matrix<double, 7, 7>::Zero()};
     // Measurement update, one scalar channel at a time, in scaled coordinates.
     Eigen::Matrix<double, 7, 1> z;
     z << st.x, st.kappa;
@@ -96,7 +98,15 @@ ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_
         double e = y_cnt[static_cast<size_t>(c)] * t.gyro_lsb - z(c);
         double sn = st.p(c, c) + t.r;
         const double es = e / t.s(c);
-        out.d2[static_cast<size_t>(c)] = es * es / sn;
+        out.d2[static_cast<size_t>(c)] = (sn > 0.0) ? es * es / sn : std::numeric_limits<double>::infinity();
+        if (sn <= 0.0) {
+            // Not a covariance any more (obs.c update_channel): the sample cannot be weighed.
+            if (t.d2_reject) {
+                ++st.rej_run[static_cast<size_t>(c)];
+                out.rejected |= 1u << c;
+            }
+            continue;
+        }
         if (t.d2_reject && out.d2[static_cast<size_t>(c)] > t.d2_max) {
             // The gate: the sample is not used at all.
             ++st.rej_run[static_cast<size_t>(c)];
@@ -165,6 +175,7 @@ ObsStepOut obs_step_ref(const ObsTable &t, ObsState &st, const std::array<int32_
     Eigen::Matrix<double, 7, 7> fs = t.s.asDiagonal().inverse() * f * t.s.asDiagonal();
     out.fs = fs;
     out.gam = gam;
+    out.t = fs * st.p;
     st.p = fs * st.p * fs.transpose() + t.q;
     for (int i = 0; i < 7; ++i) { st.p(i, i) = std::min(std::max(st.p(i, i), t.p_floor), t.p_ceil); }
     st.x = phi * st.x + gam * u;

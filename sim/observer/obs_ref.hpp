@@ -59,6 +59,7 @@ struct ObsStepOut {
     Eigen::Matrix<double, 7, 2> gain;       // scaled Kalman gains L_s, one column per channel
     Eigen::Matrix<double, 7, 7> fs;         // scaled transition matrix of the time update
     Eigen::Matrix<double, 6, 2> gam;        // Gamma(kappa) of the time update
+    Eigen::Matrix<double, 7, 7> t;          // F_s P_s of the time update (range analysis)
 };
 
 // One nominal EKF step from state st with gyro counts y_cnt: update, command, predict.

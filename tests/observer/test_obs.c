@@ -322,6 +322,47 @@ UT_TEST(gate_rejects_a_wild_sample_and_counts_it)
     UT_TRUE(open.x_q29[0] != s.x_q29[0]);
 }
 
+/* S = P_cc + R <= 0 (P_s no longer a covariance, possible only after it has left its formats): the
+   sample cannot be weighed. It is never used, gate or no gate (the step equals the same step with
+   that axis marked stale), reads as d^2 = INT32_MAX, and counts as a rejection when the gate is on,
+   so a persistent fault still ends in INNOV_PERSIST. Before this rule S < 0 gave a negative d^2 that
+   passed the gate, and a stuck gyro on the 5 Hz table never reached SAFE (tests/app/test_fsw_exec.c). */
+UT_TEST(non_positive_innovation_variance_is_never_weighed)
+{
+    static obs_state_t s;
+    static obs_state_t twin;
+    static obs_state_t open;
+    obs_out_t out;
+    obs_out_t ot;
+    obs_params_t p_open = OBS_TBL_50HZ_PAPER;
+    const obs_params_t *p = &OBS_TBL_50HZ_PAPER;
+    uint32_t i;
+    uint32_t seq = settle(&s, p, &out, 500u);
+    obs_in_t in = plausible(&s, seq);
+    obs_in_t in_stale = in;
+    s.p_q30[0] = -p->r_q30 - 1000;                   /* S_0 = -1000 LSB */
+    twin = s;
+    open = s;
+    p_open.d2_reject = 0u;
+    obs_step(&s, p, &in, &out);
+    UT_EQ(out.tlm.d2_q16[0], INT32_MAX);
+    UT_TRUE((out.health & OBS_H_INNOV_HIGH) != 0u);
+    UT_UEQ(s.rej_run[0], 1u);
+    UT_UEQ(s.rej_run[1], 0u);
+    in_stale.stale = 1u;                             /* axis y marked stale: no update on channel 0 */
+    obs_step(&twin, p, &in_stale, &ot);
+    for (i = 0u; i < OBS_NX; i++) {
+        UT_CHECK_EQ(s.x_q29[i], twin.x_q29[i]);
+    }
+    UT_EQ(s.kappa_q28, twin.kappa_q28);
+    obs_step(&open, &p_open, &in, &ot);              /* monitor only: still not weighed, not counted */
+    UT_EQ(ot.tlm.d2_q16[0], INT32_MAX);
+    UT_UEQ(open.rej_run[0], 0u);
+    for (i = 0u; i < OBS_NX; i++) {
+        UT_CHECK_EQ(open.x_q29[i], twin.x_q29[i]);
+    }
+}
+
 /* n_rej_safe consecutive rejections of one channel latch the safe output at exactly the
    n_rej_safe-th: INNOV_PERSIST (a mission fault bit), zero command, kappa frozen; good samples
    afterwards do not release it, init does. */
@@ -432,7 +473,7 @@ int main(void)
         UT_CASE(init_gives_safe_outputs), UT_CASE(waits_for_a_full_measurement_then_commands),
         UT_CASE(invalid_axes_are_skipped_and_counted), UT_CASE(sequence_gaps_and_stale_samples),
         UT_CASE(loss_of_measurements_then_reinit_keeps_kappa), UT_CASE(command_is_limited_as_a_vector),
-        UT_CASE(kappa_stays_in_its_band), UT_CASE(gate_rejects_a_wild_sample_and_counts_it),
+        UT_CASE(kappa_stays_in_its_band), UT_CASE(gate_rejects_a_wild_sample_and_counts_it), UT_CASE(non_positive_innovation_variance_is_never_weighed),
         UT_CASE(persistent_rejection_latches_the_safe_output_after_exactly_n),
         UT_CASE(kappa_freeze_engages_on_a_burst_and_releases), UT_CASE(deterministic),
     };

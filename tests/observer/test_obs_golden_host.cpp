@@ -53,19 +53,32 @@ struct MaxErr {
     double rx = 0, rk = 0, rp = 0;           // largest error / bound ratios (must stay <= 1)
     int32_t cnt = 0;
     uint32_t steps = 0;
+    // Range (the reference's values, scaled coordinates): the regressor column of F_s by row
+    // group, F_s P_s, P_s; and the fixed-point step's fx status bits over the run.
+    double f_w = 0, f_mu = 0, f_mudot = 0, t = 0, pm = 0, f_lim_ratio = 0;
+    uint32_t fx_bits = 0;
 };
 
 double inf_norm(const Eigen::MatrixXd &m) { return m.cwiseAbs().rowwise().sum().maxCoeff(); }
 
 int32_t gyro_count(double w) { return static_cast<int32_t>(std::floor(w / kLsb + 0.5)); }
 
-MaxErr compare_run(const obs_params_t &tab, const double *phi_t, const double *gam_t, uint32_t nsteps)
+// The exact sum that forms f_i = Phi_k,i x + Gamma_k,i u (obs.c build_f) is an int64 in
+// q(max(q_phik, q_gamk) + 29): |f_i| < 2^(63 - that) in SI, i.e. 2^(63 - that + ls_k - ls_i) scaled.
+double f_limit(const obs_params_t &tab, int i)
+{
+    const int qs = std::max(static_cast<int>(tab.q_phik), static_cast<int>(tab.q_gamk)) + 29;
+    return std::ldexp(1.0, 63 - qs + tab.ls[6] - tab.ls[i]);
+}
+
+MaxErr compare_run(const obs_params_t &tab, const double *phi_t, const double *gam_t, uint32_t nsteps,
+                   double w0y_deg = 1.0, double w0z_deg = 1.0)
 {
     MaxErr m;
     obs_state_t s;
     obs_out_t out;
     const ref::ObsTable rt = ref::dequantise(tab);
-    double x[6] = {1.0 * kDeg, 1.0 * kDeg, 0, 0, 0, 0};
+    double x[6] = {w0y_deg * kDeg, w0z_deg * kDeg, 0, 0, 0, 0};
     (void)obs_init(&s, &tab, &out);
     for (uint32_t k = 0; k < nsteps; ++k) {
         obs_in_t in;
@@ -78,8 +91,17 @@ MaxErr compare_run(const obs_params_t &tab, const double *phi_t, const double *g
         ref::ObsState rs = ref::from_fixed(s);
         const double p6_norm1 = rs.p.row(6).cwiseAbs().sum();
         obs_step(&s, &tab, &in, &out);
+        m.fx_bits |= out.health & FX_ST_MASK;
         if (compare) {
             ref::ObsStepOut ro = ref::obs_step_ref(rt, rs, {in.gyro_cnt[0], in.gyro_cnt[1]});
+            for (int i = 0; i < 6; ++i) {
+                const double f = std::fabs(ro.fs(i, 6));
+                double &g = (i < 2) ? m.f_w : (((i % 2) == 0) ? m.f_mu : m.f_mudot);
+                g = std::max(g, f);
+                m.f_lim_ratio = std::max(m.f_lim_ratio, f / f_limit(tab, i));
+            }
+            m.t = std::max(m.t, ro.t.cwiseAbs().maxCoeff());
+            m.pm = std::max(m.pm, rs.p.cwiseAbs().maxCoeff());
             int32_t dcnt = 0;
             for (int i = 0; i < 2; ++i) {
                 dcnt = std::max(dcnt, std::abs(ro.cmd_cnt[static_cast<size_t>(i)] - out.bdot_cmd_cnt[i]));
@@ -141,6 +163,24 @@ void report(const char *name, const MaxErr &m)
     std::printf("%-14s %u steps: max |fixed - ref|: x_hat %.2f LSB q29 (%.2f of bound), kappa %.2f LSB q28 "
                 "(%.2f), P_s %.2f LSB q30 (%.2f), command %d count\n",
                 name, m.steps, m.x, m.rx, m.kappa, m.rk, m.p, m.rp, m.cnt);
+    std::printf("%-14s range: |f_s| omega %.2f, mu %.4f, mudot %.3f (%.2f of the exact sum's limit); "
+                "|F_s P_s| %.3f, |P_s| %.3f (q30 limit 2); fx bits 0x%02x\n",
+                name, m.f_w, m.f_mu, m.f_mudot, m.f_lim_ratio, m.t, m.pm, m.fx_bits);
+}
+
+// The common verdict: the per-step bounds hold, commands agree within a count, no fx status bit,
+// and every range stays under half its limit (a factor 2 of margin over the measured peak).
+void check(const MaxErr &m, uint32_t min_steps)
+{
+    UT_CHECK(m.steps > min_steps);
+    UT_CHECK(m.rx <= 1.0);
+    UT_CHECK(m.rk <= 1.0);
+    UT_CHECK(m.rp <= 1.0);
+    UT_CHECK(m.cnt <= 1);
+    UT_CHECK(m.fx_bits == 0u);
+    UT_CHECK(m.f_lim_ratio <= 0.5);
+    UT_CHECK(m.t <= 1.0 + 1.0 / 16.0);   // its kappa row is P_s's
+    UT_CHECK(m.pm <= 1.0 + 1.0 / 16.0);   // P0's largest entry is 1.049 (design.py); q30 holds < 2
 }
 
 }  // namespace
@@ -149,26 +189,43 @@ UT_TEST(golden_s0_7_phys)
 {
     MaxErr m = compare_run(OBS_TBL_50HZ_PHYS, TRUTH_PHYS_50HZ_PHI, TRUTH_PHYS_50HZ_GAM, 10000u);   // 200 s
     report("S0-7 M-phys", m);
-    UT_CHECK(m.steps > 9000u);
-    UT_CHECK(m.rx <= 1.0);
-    UT_CHECK(m.rk <= 1.0);
-    UT_CHECK(m.rp <= 1.0);
-    UT_CHECK(m.cnt <= 1);
+    check(m, 9000u);
 }
 
 UT_TEST(golden_s0_5_paper)
 {
     MaxErr m = compare_run(OBS_TBL_50HZ_PAPER, TRUTH_PAPER_50HZ_PHI, TRUTH_PAPER_50HZ_GAM, 3000u);  // 60 s
     report("S0-5 M-paper", m);
-    UT_CHECK(m.steps > 2900u);
-    UT_CHECK(m.rx <= 1.0);
-    UT_CHECK(m.rk <= 1.0);
-    UT_CHECK(m.rp <= 1.0);
-    UT_CHECK(m.cnt <= 1);
+    check(m, 2900u);
+}
+
+// The design range (issue 17): M-phys from 2, 3 and 4 deg/s on both axes (4 deg/s takes the sail to
+// 29.8 deg, the model's 30 deg validity limit) and opposite signs; M-paper up to 5 deg/s. Before
+// the regressor column was held in int64 (obs.h fk_q28), M-phys saturated it from 2 deg/s.
+UT_TEST(golden_range_phys)
+{
+    struct W { double y, z; const char *name; };
+    for (const W w : {W{2.0, 2.0, "M-phys 2,2"}, W{3.0, 3.0, "M-phys 3,3"}, W{4.0, 4.0, "M-phys 4,4"},
+                      W{4.0, -4.0, "M-phys 4,-4"}, W{-3.0, 1.0, "M-phys -3,1"}}) {
+        MaxErr m = compare_run(OBS_TBL_50HZ_PHYS, TRUTH_PHYS_50HZ_PHI, TRUTH_PHYS_50HZ_GAM, 12500u, w.y, w.z);  // 250 s
+        report(w.name, m);
+        check(m, 12000u);
+    }
+}
+
+UT_TEST(golden_range_paper)
+{
+    struct W { double y, z; const char *name; };
+    for (const W w : {W{3.0, 3.0, "M-paper 3,3"}, W{5.0, 5.0, "M-paper 5,5"}, W{5.0, -5.0, "M-paper 5,-5"}}) {
+        MaxErr m = compare_run(OBS_TBL_50HZ_PAPER, TRUTH_PAPER_50HZ_PHI, TRUTH_PAPER_50HZ_GAM, 3000u, w.y, w.z);  // 60 s
+        report(w.name, m);
+        check(m, 2900u);
+    }
 }
 
 int main(void)
 {
-    UT_CASES(cases) = { UT_CASE(golden_s0_7_phys), UT_CASE(golden_s0_5_paper) };
+    UT_CASES(cases) = { UT_CASE(golden_s0_7_phys), UT_CASE(golden_s0_5_paper), UT_CASE(golden_range_phys),
+                        UT_CASE(golden_range_paper) };
     return UT_RUN("obs_golden", cases);
 }

@@ -134,11 +134,14 @@ static void fill_scratch(obs_state_t *s, uint32_t pattern)
 {
     uint32_t i;
     for (i = 0u; i < (NZ * NZ); i++) {
-        s->f_q28[i] = (int32_t)(pattern ^ (i * 0x9E3779B9u));
         s->t_q30[i] = (int32_t)(pattern + i);
     }
     for (i = 0u; i < (OBS_NX * OBS_NX); i++) {
+        s->f_q28[i] = (int32_t)(pattern ^ (i * 0x9E3779B9u));
         s->phi_q[i] = (int32_t)(~pattern ^ i);
+    }
+    for (i = 0u; i < OBS_NX; i++) {
+        s->fk_q28[i] = (int64_t)(pattern ^ (i * 0x9E3779B9u)) * 3;
     }
     for (i = 0u; i < (OBS_NX * OBS_NU); i++) {
         s->gam_q[i] = (int32_t)(pattern - i);

@@ -275,6 +275,40 @@ SIM_TEST(s08_fixed_vs_double)
     }
 }
 
+// ---------------------------------------------------------------- the design range (issue 17)
+// The detumble from initial rates across the design range, fixed point against the double loop
+// by S0-8's tolerances, with no fx status bit: M-phys 1-4 deg/s on both axes (4 deg/s takes the sail
+// to 29.8 deg, the model's 30 deg validity limit; 4.5 deg/s leaves it) and opposite signs; M-paper
+// up to 5 deg/s. M-phys raised SAT bits from 2 deg/s until the regressor column of F_s was held in
+// int64 (fsw/observer/README.md "Formats and ranges").
+SIM_TEST(range_rate_sweep)
+{
+    struct Case { const char *file; double wy, wz; double dur_s; };
+    for (const Case c : {Case{"s0-7_nominal_mphys.yaml", 1.0, 1.0, 250.0}, Case{"s0-7_nominal_mphys.yaml", 2.0, 2.0, 250.0},
+                         Case{"s0-7_nominal_mphys.yaml", 3.0, 3.0, 250.0}, Case{"s0-7_nominal_mphys.yaml", 4.0, 4.0, 250.0},
+                         Case{"s0-7_nominal_mphys.yaml", 3.0, -3.0, 250.0}, Case{"s0-7_nominal_mphys.yaml", -4.0, 4.0, 250.0},
+                         Case{"s0-5_nominal_mpaper.yaml", 3.0, 3.0, 60.0}, Case{"s0-5_nominal_mpaper.yaml", 5.0, 5.0, 60.0},
+                         Case{"s0-5_nominal_mpaper.yaml", 5.0, -5.0, 60.0}}) {
+        sim::Scenario s = scn(c.file);
+        constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+        sail(s).w0_radps = {c.wy * kDegToRad, c.wz * kDegToRad};
+        s.duration_s = c.dur_s;
+        char label[80];
+        std::snprintf(label, sizeof label, "range %s w0 (%.0f, %.0f) deg/s", c.file, c.wy, c.wz);
+        const auto fx = run(s, label, "fixed");
+        const auto db = run(s, label, "ref");
+        expect_clean(fx);
+        EXPECT_TRUE(obs(fx).t_s_plus > 0.0);                     // settled within the run
+        const double h = s.h_s();
+        auto close_t = [h](double a, double b) { return std::fabs(a - b) <= std::max(0.01 * b, 2.0 * h + 1e-9); };
+        EXPECT_TRUE(close_t(obs(fx).t_s, obs(db).t_s));
+        EXPECT_TRUE(close_t(obs(fx).t_s_plus, obs(db).t_s_plus));
+        EXPECT_NEAR(obs(fx).k_hat_final, obs(db).k_hat_final, 0.005 * obs(db).k_hat_final);
+        EXPECT_NEAR(obs(fx).peak_mu_deg, obs(db).peak_mu_deg, 0.01 * obs(db).peak_mu_deg);
+        EXPECT_NEAR(obs(fx).peak_w_degs, obs(db).peak_w_degs, 0.01 * obs(db).peak_w_degs);
+    }
+}
+
 // ---------------------------------------------------------------- S0-3, S0-4, S0-9
 SIM_TEST(s03_paper_printed_diverges)
 {
@@ -329,6 +363,9 @@ SIM_TEST(s09_authority_1p0_diverges)
     EXPECT_LE(obs(r).t_persist_s, 1.0);                      // CMD_LIMIT_PERSIST within 1 s (1.0)
     EXPECT_TRUE(r.plant.diverged);
     EXPECT_LE(r.plant.t_end_s, 30.0);                           // (26.8)
+    // No fx bit up to the divergence: the regressor column of F_s saturated here from 11.86 s
+    // until it was held in int64 (fsw/observer/README.md "Formats and ranges").
+    EXPECT_TRUE(r.core.t_first_fx_s < 0.0);
     EXPECT_EQ_INT(tlm(r, "n_safe"), 0);   // CMD_LIMIT_PERSIST is reported, not a SAFE trigger
     EXPECT_EQ_INT(r.core.tlm_n, r.plant.steps);              // it kept commanding to the end
 }
@@ -587,6 +624,7 @@ int main(int argc, char **argv)
     const CMUnitTest s05[] = {cmocka_unit_test(s05_nominal), cmocka_unit_test(s05_khat0),
                               cmocka_unit_test(s05_noise), cmocka_unit_test(s05_inertia)};
     const CMUnitTest s08[] = {cmocka_unit_test(s08_fixed_vs_double)};
+    const CMUnitTest range[] = {cmocka_unit_test(range_rate_sweep)};
     const CMUnitTest other[] = {cmocka_unit_test(s03_paper_printed_diverges), cmocka_unit_test(s04_5hz),
                                 cmocka_unit_test(s09_authority_1p2_vector_settles_per_axis_diverges),
                                 cmocka_unit_test(s09_authority_1p0_diverges), cmocka_unit_test(s09_frame_loss_5pct)};
@@ -605,6 +643,7 @@ int main(int argc, char **argv)
     if (g == "s07b" || g == "all") { rc += cmocka_run_group_tests_name("sil_s07b", s07b, nullptr, nullptr); }
     if (g == "s05" || g == "all") { rc += cmocka_run_group_tests_name("sil_s05", s05, nullptr, nullptr); }
     if (g == "s08" || g == "all") { rc += cmocka_run_group_tests_name("sil_s08", s08, nullptr, nullptr); }
+    if (g == "range" || g == "all") { rc += cmocka_run_group_tests_name("sil_range", range, nullptr, nullptr); }
     if (g == "other" || g == "all") { rc += cmocka_run_group_tests_name("sil_other", other, nullptr, nullptr); }
     if (g == "faults" || g == "all") { rc += cmocka_run_group_tests_name("sil_faults", faults, nullptr, nullptr); }
     if (g == "udpm") { rc += cmocka_run_group_tests_name("sil_udpm", udpm, nullptr, nullptr); }
