@@ -452,6 +452,14 @@ typedef struct {
     uint32_t job_t_start;                  /* step the running job started */
     uint64_t on_tot_g[IMP_NTHR];           /* commanded on-time since START, grid units */
     uint64_t keep_cost_q56;                /* predicted cost of keeping the timeline (running re-plan) */
+    /* The inputs of the per-thruster telemetry (dv_cmd, dv_used) when it was last computed, and the
+       fx status of that computation: it is recomputed only when one of them changed (imp.c). */
+    uint64_t tlm_on_g[IMP_NTHR];
+    int32_t  tlm_alpha_q30[IMP_NTHR];
+    int32_t  tlm_k_gtau_m;
+    uint8_t  tlm_k_gtau_sh;
+    uint8_t  tlm_thr_valid;                /* bit j: thruster j's cached inputs are meaningful */
+    uint8_t  tlm_thr_st[IMP_NTHR];
     imp_timeline_t act;                    /* timeline in force */
     imp_timeline_t pend;                   /* re-plan waiting for its t_a */
     imp_nav_t nav;                         /* latest accepted nav sample */
