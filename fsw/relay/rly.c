@@ -64,7 +64,7 @@ static void rly_check_adapt(const rly_params_t *p, uint32_t *w)
     if (p->seed == 0u) {
         *w |= RLY_WHY_SEED;
     }
-    if ((p->adapt_mode > RLY_ADAPT_IMPROVED) ||
+    if ((p->adapt_mode > RLY_ADAPT_IMPROVED_UP) ||
         (!ratio_ok(p->delta0_num, p->delta0_den)) || (p->delta0_num >= p->delta0_den) ||
         (!ratio_ok(p->cliff_num, p->cliff_den)) || (p->cliff_num <= p->cliff_den) ||
         (!ratio_ok(p->unfreeze_num, p->unfreeze_den)) || (p->unfreeze_num <= p->unfreeze_den) ||

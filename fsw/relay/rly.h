@@ -50,7 +50,7 @@ typedef struct {
     uint16_t kt_min_q16;
     uint16_t kt_max_q16;
     uint8_t  n_modes;            /* modes in the envelope copy, 0..RLY_MAX_MODES */
-    uint8_t  adapt_mode;         /* RLY_ADAPT_OFF / PAPER / IMPROVED */
+    uint8_t  adapt_mode;         /* RLY_ADAPT_OFF / PAPER / IMPROVED / IMPROVED_UP */
     uint8_t  delta0_num;         /* delta_0 = num / den */
     uint8_t  delta0_den;
     uint8_t  n_small;            /* small-change run that freezes (PAPER) or gates (IMPROVED) */

@@ -133,7 +133,10 @@ static uint16_t search(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint6
         } else {
             next = learn_step(a, p, kt, s, late, w, h);
         }
-    } else if (late && (((uint64_t)p->cliff_den * s) > ((uint64_t)p->cliff_num * a->s_prev))) {
+    } else if (late && (((uint64_t)p->cliff_den * s) > ((uint64_t)p->cliff_num * a->s_prev)) &&
+               ((p->adapt_mode != RLY_ADAPT_IMPROVED_UP) || (a->d_last > 0))) {
+        /* IMPROVED_UP arms the cliff only after an upward step: a rise after a downward step is a
+           regime flip of the two-regime zone, not a cliff crossing (README "k_t adaptation"). */
         /* retreat behind the k_t of the previous window, against the last step's direction */
         int32_t back = (int32_t)p->retreat_dk * (int32_t)p->dk_q16;
         next = rly_kt_clamp((int32_t)a->kt_hist[1] - ((int32_t)a->d_last * back), p, h);
@@ -184,7 +187,7 @@ static uint16_t frozen(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint6
     a->frozen_age = (a->frozen_age < UINT32_MAX) ? (a->frozen_age + 1u) : a->frozen_age;
     if (a->frozen_age == 2u) {
         a->s_ref = s;   /* the 2nd window after freezing: the first ran while k_t settled */
-    } else if ((a->frozen_age > 2u) && (p->adapt_mode == RLY_ADAPT_IMPROVED)) {
+    } else if ((a->frozen_age > 2u) && (p->adapt_mode >= RLY_ADAPT_IMPROVED)) {
         if (((uint64_t)p->unfreeze_den * s) > ((uint64_t)p->unfreeze_num * a->s_ref)) {
             a->unf_run++;
         } else {

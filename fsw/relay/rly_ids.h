@@ -48,6 +48,7 @@
 #define RLY_ADAPT_OFF                0u
 #define RLY_ADAPT_PAPER              1u
 #define RLY_ADAPT_IMPROVED           2u
+#define RLY_ADAPT_IMPROVED_UP        3u
 
 /* adaptation phases */
 #define RLY_PH_SEARCH                0u

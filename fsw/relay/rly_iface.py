@@ -86,7 +86,7 @@ MODULE = Module(
                                 ("L_BRAKE", 5), ("COAST", 6)], "law states (spec 20 §3.2)"),
         enum("lvl", "RLY_LVL_", [("OFF", 0), ("WEAK_POS", 1), ("WEAK_NEG", 2), ("FULL_POS", 3), ("FULL_NEG", 4)],
              "actuator levels: the command is an enum, never a number (spec 20 §2.4)"),
-        enum("adapt", "RLY_ADAPT_", [("OFF", 0), ("PAPER", 1), ("IMPROVED", 2)], "k_t adaptation modes"),
+        enum("adapt", "RLY_ADAPT_", [("OFF", 0), ("PAPER", 1), ("IMPROVED", 2), ("IMPROVED_UP", 3)], "k_t adaptation modes"),
         enum("ph", "RLY_PH_", [("SEARCH", 0), ("PROBE", 1), ("FROZEN", 2)], "adaptation phases"),
         enum("ev", "RLY_EV_", [("NONE", 0), ("STEP", 1), ("PROBE_START", 2), ("FREEZE_SETTLED", 3),
                                 ("FREEZE_CLIFF", 4), ("UNFREEZE", 5), ("SKIPPED", 6)],

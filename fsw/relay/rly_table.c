@@ -52,7 +52,7 @@ static const fsw_field_lim_t RLY_LIMS[] = {
     {40u, FSW_FT_U16, 1, 65535},                /* 12 kt_min_q16 */
     {42u, FSW_FT_U16, 1, 65535},                /* 13 kt_max_q16 */
     {44u, FSW_FT_U8, 0, (int64_t)RLY_MAX_MODES}, /* 14 n_modes */
-    {45u, FSW_FT_U8, 0, 2},                     /* 15 adapt_mode */
+    {45u, FSW_FT_U8, 0, 3},                     /* 15 adapt_mode */
     {46u, FSW_FT_U8, 1, 255},                   /* 16 delta0_num */
     {47u, FSW_FT_U8, 1, 255},                   /* 17 delta0_den */
     {48u, FSW_FT_U8, 1, 255},                   /* 18 n_small */

@@ -42,6 +42,47 @@ const rly_params_t RLY_TBL_DEFAULT = {
     .revision = 1u,
 };
 
+/* rly_improved_up: modes omega [0.44, 0.755] rad/s, k [0.0213, 0.0216]; k_t0 0.31; adaptation RLY_ADAPT_IMPROVED_UP */
+const rly_params_t RLY_TBL_IMPROVED_UP = {
+    .period_us = 1000u,
+    .x_max_q24 = 8388608,   /* 0.5 rad */
+    .eps_q24 = 8389,   /* 0.0005 rad */
+    .gamma_q24 = 1678,   /* 0.0001 rad */
+    .tau_max_ticks = 60000u,
+    .win_ticks = 500000u,   /* 500 s */
+    .seed = 1u,
+    .env_alarm_q40 = 32985349u,   /* 3e-05 rad */
+    .lost_ticks = 100u,
+    .tmin_windows = 20u,
+    .dk_q16 = 131u,   /* 0.002 */
+    .kt0_q16 = 20316u,   /* 0.31 */
+    .kt_min_q16 = 18350u,   /* 0.28 */
+    .kt_max_q16 = 26214u,   /* 0.4 */
+    .n_modes = 2u,
+    .adapt_mode = RLY_ADAPT_IMPROVED_UP,
+    .delta0_num = 1u,
+    .delta0_den = 20u,
+    .n_small = 6u,
+    .n_ignore = 4u,
+    .count_before_tmin = 1u,
+    .learn_after_tmin = 1u,
+    .gate_dk = 2u,
+    .probe_settle = 1u,
+    .cliff_num = 3u,
+    .cliff_den = 2u,
+    .retreat_dk = 2u,
+    .unfreeze_num = 3u,
+    .unfreeze_den = 2u,
+    .unfreeze_windows = 3u,
+    .dphi_bam64 = {1291791821444081u, 2216597329977911u, 0u, 0u},
+    .f_q64 = {1291791821444080540u, 2216597329977910926u, 0u, 0u},
+    .cu_q40 = {4838760, 1666555, 0, 0},
+    .ce_q40 = {120969, 41664, 0, 0},
+    .q0_q40 = {3023657, 0, 0, 0},
+    .p0_q40 = {0, 0, 0, 0},
+    .revision = 1u,
+};
+
 /* rly_paper: modes omega [0.44, 0.755] rad/s, k [0.0213, 0.0216]; k_t0 0.31; adaptation RLY_ADAPT_PAPER */
 const rly_params_t RLY_TBL_PAPER = {
     .period_us = 1000u,

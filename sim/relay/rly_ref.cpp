@@ -947,11 +947,11 @@ WindowResult Adapt::window_end(std::uint64_t s_j, bool valid)
             freeze(kt_);
             r.event = AdaptEvent::FREEZE_SETTLED;
             decided = true;
-        } else if (after_tmin && p_.mode == AdaptMode::IMPROVED) {
+        } else if (after_tmin && (p_.mode == AdaptMode::IMPROVED || p_.mode == AdaptMode::IMPROVED_UP)) {
             const std::uint32_t kt_prev = kt_hist_[(j_ - 1u) % kt_hist_.size()];   // j >= 1 here
             const std::uint32_t lag = p_.n_small;
-            if (p_.cliff_den * s_j > p_.cliff_num * s_prev_) {
-                const int d = kt_ > kt_prev ? 1 : (kt_ < kt_prev ? -1 : sign_);
+            const int d = kt_ > kt_prev ? 1 : (kt_ < kt_prev ? -1 : sign_);
+            if (p_.cliff_den * s_j > p_.cliff_num * s_prev_ && (p_.mode != AdaptMode::IMPROVED_UP || d > 0)) {
                 const std::int64_t back = static_cast<std::int64_t>(p_.retreat_dk) * p_.dk_q16;
                 freeze(clamp_kt(static_cast<std::int64_t>(kt_prev) - d * back, &r.kt_clamped));
                 r.event = AdaptEvent::FREEZE_CLIFF;
@@ -1008,7 +1008,7 @@ WindowResult Adapt::window_end(std::uint64_t s_j, bool valid)
         }
         if (frozen_age_ == 2u) {
             s_ref_ = s_j;
-        } else if (frozen_age_ > 2u && p_.mode == AdaptMode::IMPROVED) {
+        } else if (frozen_age_ > 2u && (p_.mode == AdaptMode::IMPROVED || p_.mode == AdaptMode::IMPROVED_UP)) {
             above_ref_ = p_.unfreeze_den * s_j > p_.unfreeze_num * s_ref_ ? above_ref_ + 1u : 0u;
             if (above_ref_ >= p_.unfreeze_windows) {
                 phase_ = AdaptPhase::SEARCH;

@@ -242,7 +242,8 @@ private:
 // ----------------------------------------------------------------------------------------------
 // Adaptation (§5) on integer window sums
 
-enum class AdaptMode : std::uint8_t { OFF, PAPER, IMPROVED };
+// IMPROVED_UP: IMPROVED with the cliff trigger armed only after an upward step (fsw/relay README).
+enum class AdaptMode : std::uint8_t { OFF, PAPER, IMPROVED, IMPROVED_UP };
 enum class AdaptPhase : std::uint8_t { SEARCH, PROBE, FROZEN };
 enum class AdaptEvent : std::uint8_t { NONE, STEP, PROBE_START, FREEZE_SETTLED, FREEZE_CLIFF, UNFREEZE,
                                        SKIPPED };

@@ -85,6 +85,7 @@ UT_TEST(table_check_one_case_per_rule)
     UT_UEQ(rly_params_check(&RLY_TBL_DEFAULT, &why), FSW_OK);
     UT_UEQ(why, 0u);
     UT_UEQ(rly_params_check(&RLY_TBL_PAPER, &why), FSW_OK);
+    UT_UEQ(rly_params_check(&RLY_TBL_IMPROVED_UP, &why), FSW_OK);
     UT_UEQ(rly_params_check(NULL, &why), FSW_ERR_ARG);
     p = RLY_TBL_DEFAULT; p.gamma_q24 = p.eps_q24;                 UT_UEQ(why_of(&p), RLY_WHY_GEOM);
     p = RLY_TBL_DEFAULT; p.gamma_q24 = 1;                         UT_UEQ(why_of(&p), RLY_WHY_GEOM);
@@ -101,7 +102,7 @@ UT_TEST(table_check_one_case_per_rule)
     p = RLY_TBL_DEFAULT; p.period_us = 2000u;                     UT_UEQ(why_of(&p), RLY_WHY_PHASE);  /* dphi of 1 ms */
     p = RLY_TBL_DEFAULT; p.delta0_num = 20u;                      UT_UEQ(why_of(&p), RLY_WHY_ADAPT);
     p = RLY_TBL_DEFAULT; p.cliff_num = 2u;                        UT_UEQ(why_of(&p), RLY_WHY_ADAPT);
-    p = RLY_TBL_DEFAULT; p.adapt_mode = 3u;                       UT_UEQ(why_of(&p), RLY_WHY_ADAPT);
+    p = RLY_TBL_DEFAULT; p.adapt_mode = 4u;                       UT_UEQ(why_of(&p), RLY_WHY_ADAPT);
     p = RLY_TBL_DEFAULT; p.lost_ticks = 0u;                       UT_UEQ(why_of(&p), RLY_WHY_LOST);
 }
 

@@ -263,10 +263,11 @@ std::uint64_t g5_sequence(const rly_params_t &p, const std::vector<std::uint64_t
 SIM_TEST(g5_adaptation_bit_exact_on_synthetic_sums)
 {
     const std::uint64_t base = 15000000000000ull;   // ~ 1.5e13: 2e-5 rad over 500 000 ticks (§4.5)
-    for (std::uint8_t mode : {static_cast<std::uint8_t>(RLY_ADAPT_PAPER), static_cast<std::uint8_t>(RLY_ADAPT_IMPROVED)}) {
+    for (std::uint8_t mode : {static_cast<std::uint8_t>(RLY_ADAPT_PAPER), static_cast<std::uint8_t>(RLY_ADAPT_IMPROVED),
+                               static_cast<std::uint8_t>(RLY_ADAPT_IMPROVED_UP)}) {
         rly_params_t p = RLY_TBL_DEFAULT;
         p.adapt_mode = mode;
-        const char *m = (mode == RLY_ADAPT_PAPER) ? "PAPER" : "IMPROVED";
+        const char *m = (mode == RLY_ADAPT_PAPER) ? "PAPER" : ((mode == RLY_ADAPT_IMPROVED) ? "IMPROVED" : "IMPROVED_UP");
         std::vector<std::uint64_t> s;
         std::vector<bool> v;
         char name[64];
@@ -313,6 +314,67 @@ SIM_TEST(g5_adaptation_bit_exact_on_synthetic_sums)
         std::snprintf(name, sizeof name, "%s limits", m);
         EXPECT_EQ_INT(g5_sequence(p, s, v, name), 0);
     }
+}
+
+// IMPROVED_UP (the shipped default, fsw/relay README "k_t adaptation"): a window mean that rises
+// above cliff_num/cliff_den of the previous one freezes with a retreat only when the last step went
+// up. Among 40 positions of a 2x rise in a swinging descent, the flight code finds one where the
+// last step went down (IMPROVED freezes there, IMPROVED_UP does not) and one where it went up (both
+// freeze); on both sequences each mode agrees with the reference field for field.
+static std::vector<std::uint8_t> flight_events(const rly_params_t &p, const std::vector<std::uint64_t> &s)
+{
+    static rly_adapt_t a;
+    rly_adapt_init(&a, &p);
+    std::uint16_t kt = p.kt0_q16;
+    std::vector<std::uint8_t> ev;
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        rly_win_t w{};
+        std::uint32_t h = 0u;
+        w.s = s[j];
+        w.j = static_cast<std::uint32_t>(j);
+        w.kt_in_q16 = kt;
+        kt = rly_adapt_window(&a, &p, true, &w, &h);
+        ev.push_back(w.event);
+    }
+    return ev;
+}
+
+SIM_TEST(g5_improved_up_arms_the_cliff_only_after_an_upward_step)
+{
+    const std::uint64_t base = 15000000000000ull;
+    rly_params_t pi = RLY_TBL_DEFAULT;
+    rly_params_t pu = RLY_TBL_DEFAULT;
+    pi.adapt_mode = RLY_ADAPT_IMPROVED;
+    pu.adapt_mode = RLY_ADAPT_IMPROVED_UP;
+    int down_found = -1;
+    int up_found = -1;
+    for (std::uint64_t jr = 21; jr < 61 && (down_found < 0 || up_found < 0); ++jr) {
+        std::vector<std::uint64_t> s;
+        for (std::uint64_t j = 0; j < jr + 5u; ++j) {
+            std::uint64_t y = base - j * (base / 100) + (j & 1u) * (base / 8);   // never small
+            if (j == jr) { y = 2 * s.back(); }
+            s.push_back(y);
+        }
+        const auto ei = flight_events(pi, s);
+        const auto eu = flight_events(pu, s);
+        const bool i_cliff = ei[jr] == RLY_EV_FREEZE_CLIFF;
+        const bool u_cliff = eu[jr] == RLY_EV_FREEZE_CLIFF;
+        if (down_found < 0 && i_cliff && !u_cliff) {
+            down_found = static_cast<int>(jr);
+            const std::vector<bool> v(s.size(), true);
+            EXPECT_EQ_INT(g5_sequence(pi, s, v, "IMPROVED rise after down"), 0);
+            EXPECT_EQ_INT(g5_sequence(pu, s, v, "IMPROVED_UP rise after down"), 0);
+        }
+        if (up_found < 0 && i_cliff && u_cliff) {
+            up_found = static_cast<int>(jr);
+            const std::vector<bool> v(s.size(), true);
+            EXPECT_EQ_INT(g5_sequence(pu, s, v, "IMPROVED_UP rise after up"), 0);
+        }
+    }
+    std::printf("G5 IMPROVED_UP: a rise after a downward step at window %d (IMPROVED freezes, IMPROVED_UP "
+                "does not), after an upward one at window %d (both freeze)\n", down_found, up_found);
+    EXPECT_TRUE(down_found >= 0);
+    EXPECT_TRUE(up_found >= 0);
 }
 
 SIM_TEST(g6_xorshift32_streams)
@@ -411,6 +473,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {cmocka_unit_test(g1_g3_g4_closed_loop_bit_exact_law_and_envelope_budget),
                                        cmocka_unit_test(g2_tau2_grid),
                                        cmocka_unit_test(g5_adaptation_bit_exact_on_synthetic_sums),
+                                       cmocka_unit_test(g5_improved_up_arms_the_cliff_only_after_an_upward_step),
                                        cmocka_unit_test(g6_xorshift32_streams),
                                        cmocka_unit_test(g7_rigid_fixed_point_first_cycle)};
     return cmocka_run_group_tests_name("rly_golden", tests, nullptr, nullptr);

@@ -42,6 +42,7 @@ def design(**over):
 # (name in scenarios and tools, C symbol, design)
 TABLES = [
     ("rly_default", "RLY_TBL_DEFAULT", design()),                          # IMPROVED (flight default)
+    ("rly_improved_up", "RLY_TBL_IMPROVED_UP", design(adapt_mode=3)),      # IMPROVED, cliff after an upward step
     ("rly_paper", "RLY_TBL_PAPER", design(adapt_mode=1)),                  # PAPER (the source's rule)
     ("rly_fixed_031", "RLY_TBL_FIXED_031", design(adapt_mode=0)),          # k_t = 0.31 held (S2, S3)
     ("rly_fixed_03389", "RLY_TBL_FIXED_03389", design(adapt_mode=0, kt0=0.3389)),   # S4

@@ -23,7 +23,7 @@ PAYLOAD = [("period_us", "I", 1, 1000, 1000000), ("x_max_q24", "i", 1, 1, XF), (
            ("seed", "I", 1, 1, U32MAX), ("env_alarm_q40", "I", 1, 1, U32MAX), ("lost_ticks", "H", 1, 1, 65535),
            ("tmin_windows", "H", 1, 1, 65535), ("dk_q16", "H", 1, 1, 65535), ("kt0_q16", "H", 1, 1, 65535),
            ("kt_min_q16", "H", 1, 1, 65535), ("kt_max_q16", "H", 1, 1, 65535), ("n_modes", "B", 1, 0, 4),
-           ("adapt_mode", "B", 1, 0, 2), ("delta0_num", "B", 1, 1, 255), ("delta0_den", "B", 1, 1, 255),
+           ("adapt_mode", "B", 1, 0, 3), ("delta0_num", "B", 1, 1, 255), ("delta0_den", "B", 1, 1, 255),
            ("n_small", "B", 1, 1, 255), ("n_ignore", "B", 1, 0, 255), ("count_before_tmin", "B", 1, 0, 1),
            ("learn_after_tmin", "B", 1, 0, 1), ("gate_dk", "B", 1, 1, 255), ("probe_settle", "B", 1, 0, 15),
            ("cliff_num", "B", 1, 1, 255), ("cliff_den", "B", 1, 1, 255), ("retreat_dk", "B", 1, 0, 255),

@@ -7,7 +7,7 @@
 // would cost most of the time.
 //
 //   rly_long exactness [--t 20000]                      S1: RK4 at 1e-4 s against drivers 1 and 2
-//   rly_long stats --mode paper|improved [--seeds 1-20] [--t 30000] [--code flight|ref] [--jobs 2] [--csv DIR]
+//   rly_long stats --mode paper|improved|improved-up [--seeds 1-20] [--t 30000] [--code flight|ref] [--jobs 2] [--csv DIR]
 //                                                       S5 / S7: per-seed freeze, k_t, late mean envelope
 //   rly_long sweep [--from 0.28] [--to 0.40] [--step 0.001] [--t 20000] [--code ref|flight] [--jobs 2] [--csv DIR]
 //                                                       S6 (continuous law) / S4, S6 spot checks (flight)
@@ -240,6 +240,11 @@ int cmd_stats(const std::string &mode, std::uint32_t s0, std::uint32_t s1, doubl
               unsigned jobs, const std::string &csv)
 {
     rly_params_t base = (mode == "paper") ? RLY_TBL_PAPER : RLY_TBL_DEFAULT;
+    if (mode == "improved") {
+        base.adapt_mode = RLY_ADAPT_IMPROVED;        // spec 20 §5.6 as printed
+    } else if (mode == "improved-up") {
+        base.adapt_mode = RLY_ADAPT_IMPROVED_UP;     // the cliff armed only after an upward step
+    }
     std::vector<SeedResult> res(s1 - s0 + 1);
     const double t_late = t_end - 10000.0;
     parallel(res.size(), jobs, [&](std::size_t i) {
@@ -424,7 +429,8 @@ int main(int argc, char **argv)
     CLI::App *ex = app.add_subcommand("exactness", "S1: RK4 against drivers 1 and 2 (relay_exactness)");
     ex->add_option("--t", t_end, "run length [s] (default 20000)");
     CLI::App *st = app.add_subcommand("stats", "S5/S7: PAPER or IMPROVED over seeds");
-    st->add_option("--mode", mode)->check(CLI::IsMember({"paper", "improved"}));
+    st->add_option("--mode", mode, "paper, improved (spec 20 §5.6) or improved-up (the shipped default)")
+        ->check(CLI::IsMember({"paper", "improved", "improved-up"}));
     st->add_option("--seeds", seeds, "A-B (default 1-20)");
     st->add_option("--t", t_end, "run length [s] (default 30000)");
     st->add_option("--code", code)->check(CLI::IsMember({"flight", "ref"}));
