@@ -1,0 +1,14 @@
+// respin_host.hpp — the RESPIN mission's host class (hil_host/missions/mission_host.hpp):
+// boot table images from the scenario, the double reference backend, the SIL metrics.
+#ifndef HIL_MISSIONS_RSP_HOST_HPP
+#define HIL_MISSIONS_RSP_HOST_HPP
+
+#include "mission_host.hpp"
+
+namespace host {
+
+const MissionHost &respin_host();
+
+}  // namespace host
+
+#endif
