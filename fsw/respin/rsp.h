@@ -1,16 +1,28 @@
 /*
- * rsp.h — respin: the flight algorithm of the RESPIN mission. Generated from the module
- * template (tools/new_module.py): a single-axis rate damper, the smallest closed loop that has
- * everything a module needs (a table, a state, health bits, telemetry). Replace the law with
- * your module's and keep the shape: params (the table), state, in, out; init/check/step on
- * caller-owned memory; no globals, no floating point, every loop bounded.
+ * rsp.h — respin: the switching law of spec 30 (seed 002) that brings a tumbling satellite into a
+ * steady spin about its major body axis y with the weak internal moments of three reaction wheels.
+ * Regions LIN / MID / FAR over |xi| = |g x f| with thresholds eps1, eps2 and hysteresis h_eps, the
+ * target-latching NEAREST law (default) and the printed law PRINTED (kept to demonstrate its
+ * defect, spec 30 §3.5), g0 averaged once, the low-momentum rule and the small-|G| guard (§3.6), the
+ * per-axis wheel distribution with the momentum-bound clamp (§4), energy bookkeeping and the
+ * health checks of §8. Gyrodines, the elastic G filter: not in this build (params check refuses).
  *
- * The law, on integer counts (the channel units of rsp_iface.py):
- *   rate   omega_BN_B_x = omega [rad/s] * 2^20      sensor channel 0
- *   torque tau_cmd_B_x  = tau [N m] * 2^16          actuator channel 0
- *   u = -round(gain_q16 * rate / 2^16), clamped to [-u_max_cnt, u_max_cnt]
- * i.e. tau = -K omega with K = gain_q16 * 2^-16 * 2^-16 / 2^-20 = gain_q16 / 2^12 N m s.
- * A step without a valid rate commands zero torque (the safe value) and is counted.
+ * Frames: B = principal body axes with the wheels locked (J diagonal, y the major axis).
+ * Sign chain (spec 30 §9): M is the internal moment on the body, M = -dH/dt; the wheel motor
+ * torque command is -M.
+ *
+ * Formats (spec 30 §5; counts are the channel units of rsp_iface.py):
+ *   gyro        omega_BN_B_cnt[3]  2^-22 rad/s;  omega_BN_B_q28 = cnt << 6   (Q3.28)
+ *   wheel speed whl_speed_cnt[3]  2^-10 rad/s;  h_whl_B_q20 = round(cnt * iw_q30 / 2^20)
+ *   momentum    G, H, Jw, g0       int32, LSB 2^-20 N m s (suffix _q20)
+ *   inertia     J_i                int32, LSB 2^-19 kg m^2 (j_q19)
+ *   g = G / g0                     through fx_recip (the reciprocal of g0 made once when g0
+ *                                  freezes; each quotient correctly rounded, README "formats")
+ *   g, xi, e_xi, C_phi, |xi|       Q1.30
+ *   inner term xi - k (H - H_f)    Q5.26 (D = I)
+ *   moments M                      int32, LSB 2^-24 N m (suffix _q24)
+ *   wheel torque command           int16 counts, 2^-17 N m (= -M, rounded once)
+ *   energies T, W, r_E             int64, LSB 2^-32 J (suffix _q32)
  */
 #ifndef FSW_RSP_H
 #define FSW_RSP_H
@@ -21,47 +33,122 @@
 #include "fx_rc.h"
 #include "rsp_ids.h"
 
-#define RSP_GAIN_MAX_Q16 ((int32_t)16777216)   /* 2^24: K <= 4096 N m s; gain * rate within int64 */
-#define RSP_U_MAX_CNT    ((int32_t)16777216)   /* 2^24 counts = 256 N m */
+#define RSP_N_AX        3u
+#define RSP_G0_TICKS_MAX 1024u     /* n_g0 upper bound (the sum of |G| stays in int64) */
 
 typedef struct {
-    uint32_t period_us;     /* the step period the table was designed for */
-    int32_t  rate_max_cnt;  /* |rate| >= rate_max_cnt is the gyro's full scale: not accepted */
-    int32_t  gain_q16;      /* K: torque counts per rate count, q16 */
-    int32_t  u_max_cnt;     /* torque command limit, counts */
-    uint16_t n_sat;         /* limited steps in a row before CMD_LIMIT_PERSIST */
-    uint32_t revision;      /* table revision (the image header's) */
+    uint32_t period_us;        /* Ts; 100 000 (0.1 s) or 500 000 (0.5 s) */
+    uint32_t mode;             /* RSP_MODE_NEAREST (default) or RSP_MODE_PRINTED */
+    uint32_t act_kind;         /* RSP_ACT_WHEELS (the only kind in this build) */
+    int32_t  j_q19[3];         /* principal inertia J_x, J_y, J_z, LSB 2^-19 kg m^2; y the largest */
+    int32_t  iw_q30;           /* wheel rotor inertia I_w, Q30 kg m^2 */
+    int32_t  eps1_q30;         /* eps1 (0.1) */
+    int32_t  eps2_q30;         /* eps2 (0.5) */
+    int32_t  heps_q30;         /* hysteresis h_eps (0.01) */
+    int32_t  m_q24;            /* law gain m = M_max / eps1 (1.5 N m), LSB 2^-24 N m */
+    int32_t  k_q30;            /* k (0.07 1/(N m s)), Q30 */
+    int32_t  mstar_q24;        /* far-law moment M* (0.15 N m wheels) */
+    int32_t  mmax_q24;         /* wheel motor torque limit M_max (0.15 N m) */
+    int32_t  hlim_q20;         /* momentum-bound clamp h_lim (4.98 N m s) */
+    int32_t  inv_ts_q16;       /* 1/Ts in Q16.16 (10 s^-1) */
+    int32_t  gguard_q20;       /* small-|G| guard g_guard (17.3 N m s = 2 H_cap) */
+    int32_t  gmin_q20;         /* low-momentum limit g_min (2 N m s) */
+    uint32_t n_g0;             /* valid ticks averaged for g0 (50), 1..RSP_G0_TICKS_MAX */
+    int32_t  gyro_max_cnt;     /* |count| >= gyro_max_cnt is full scale (2^22) */
+    int32_t  whl_max_cnt;      /* |count| >  whl_max_cnt is out of range (600 rad/s = 614 400) */
+    uint32_t n_fault;          /* invalid ticks in a row before a cause latches (50) */
+    uint32_t n_stale;          /* identical raw words in a row that count as stale (20) */
+    uint32_t n_whl_est;        /* ticks a missing wheel speed may be propagated (10) */
+    int32_t  outlier_q20;      /* absolute floor of the |G| outlier gate (0.5 N m s) */
+    uint32_t outlier_rel_q16;  /* relative gate on ||G| - g0| (0.05 g0), Q16 */
+    int32_t  drift_q30;        /* |rho_G| low-passed beyond this raises G_DRIFT (0.02) */
+    uint32_t drift_sh;         /* rho_G low-pass: alpha = 2^-drift_sh per tick (100 s at 0.1 s: 10) */
+    int64_t  ealarm_q32;       /* r_E above this raises ENERGY_ALARM (0.5 J) */
+    int32_t  done_xi_q30;      /* done: |xi| < done_xi (0.01) ... */
+    int32_t  done_h_q20;       /* ... and |H - H_f| < done_h (0.05 N m s) per axis ... */
+    uint32_t done_ticks;       /* ... for done_ticks ticks (300 s) */
+    uint32_t revision;         /* table revision (the image header's) */
 } rsp_params_t;
 
 /* The telemetry block (its wire layout: rsp_iface.py -> rsp_tlm.c). */
 typedef struct {
-    int32_t  rate_cnt;      /* rate of the last step (0 without a valid one) */
-    int32_t  u_cnt;         /* torque command of the last step */
-    uint32_t n_skip;        /* steps without a valid rate */
-    uint32_t n_limited;     /* steps with the command at its limit */
-    uint32_t health_sticky; /* OR of the health words since init */
-    uint32_t revision;      /* table revision in use */
+    uint8_t  phase;            /* RSP_PH_* */
+    uint8_t  region;           /* RSP_RG_* */
+    uint8_t  latched;          /* 1 while a_f is latched (region left FAR) */
+    uint8_t  mode;             /* RSP_MODE_* in force (telemetry shows the mode, spec 30 §3.5) */
+    int32_t  a_f;              /* +1 / -1: f = a_f e_y */
+    uint32_t flags;            /* RSP_H_* of the last step */
+    int32_t  xi_abs_q30;       /* |xi| */
+    int32_t  cphi_q30;         /* C_phi = a_f g_y */
+    int32_t  g_q30[3];         /* g = G / g0 */
+    int32_t  g0_q20;           /* frozen g0 (0 until frozen) */
+    int32_t  rho_q30;          /* rho_G = |G| / g0 - 1 */
+    int32_t  rho_lp_q30;       /* rho_G low-passed */
+    int32_t  mcmd_q24[3];      /* law moment on the body, before distribution */
+    int32_t  mdel_q24[3];      /* moment after distribution (what the wheels are told) */
+    int32_t  h_q20[3];         /* wheel momentum used */
+    int64_t  t_q32;            /* T = 1/2 (J omega) . omega */
+    int64_t  w_q32;            /* work of the internal moment since t0 */
+    int64_t  re_q32;           /* r_E = T - T0 - W */
+    uint32_t done_run;         /* ticks in tolerance in a row */
+    uint32_t n_switch;         /* region changes */
+    uint32_t n_lin;            /* ticks per region (valid ticks after g0) */
+    uint32_t n_mid;
+    uint32_t n_far;
+    uint32_t n_gyro_bad;       /* invalid ticks: gyro full scale / out of range */
+    uint32_t n_gyro_stale;     /* invalid ticks: gyro raw word frozen n_stale ticks */
+    uint32_t n_whl_bad;        /* invalid ticks: wheel speed missing beyond n_whl_est / out of range */
+    uint32_t n_whl_est;        /* ticks with a propagated wheel momentum */
+    uint32_t n_outlier;        /* invalid ticks: |G| outlier */
+    uint32_t n_overflow;       /* ticks with an fx status (zero command) */
+    uint32_t n_clip;           /* ticks with any axis clipped to M_max */
+    uint32_t n_hbound;         /* ticks with any axis at the momentum bound */
+    uint32_t health_sticky;    /* OR of the health words since init */
+    uint32_t revision;         /* table revision in use */
 } rsp_tlm_t;
 
 typedef struct {
-    uint32_t sat_run;       /* limited steps in a row */
+    uint32_t phase;            /* RSP_PH_G0 until g0 froze, RSP_PH_LOW (low momentum) or RSP_PH_RUN */
+    uint32_t region;           /* RSP_RG_* */
+    int32_t  a_f;              /* +1 / -1 */
+    bool     latched;
+    uint32_t n_g0_acc;         /* valid ticks averaged so far */
+    int64_t  g0_sum_q20;       /* sum of |G_k| over them */
+    fx_recip_t r0;             /* reciprocal of g0 (fx_recip_init once g0 froze) */
+    bool     have_prev;        /* omega_prev / h_prev hold the last valid tick */
+    int32_t  omega_prev_q28[3];
+    int32_t  h_prev_q20[3];
+    int32_t  h_last_q20[3];    /* last good wheel momentum per axis (propagation base) */
+    int32_t  mdel_last_q24[3]; /* moment commanded last tick (wheel propagation, M_del check) */
+    uint32_t whl_miss[3];      /* missing samples in a row per wheel */
+    int32_t  gyro_last_cnt[3]; /* raw gyro words of the last tick (stale detection) */
+    uint32_t gyro_same;        /* ticks in a row with all three raw words unchanged */
+    int32_t  whl_last_cnt[3];
+    uint32_t whl_same[3];      /* ticks in a row with the wheel word unchanged while |M_i| > 0.01 N m */
+    uint32_t bad_run;          /* invalid ticks in a row (latches RSP_H_INPUT_FAULT at n_fault) */
+    int64_t  t0_q32;           /* T at the first valid tick after g0 froze */
+    bool     have_t0;
+    bool     input_fault;      /* RSP_H_INPUT_FAULT latched (n_fault invalid ticks in a row) until rsp_init */
+    /* tlm also carries the law's running values that RESET_COUNTERS leaves alone and rsp.c reads
+       back each tick: g0_q20, rho_lp_q30, w_q32, re_q32 (r_E carried over a gap), done_run. */
     rsp_tlm_t tlm;
 } rsp_state_t;
 
 typedef struct {
-    int32_t rate_cnt;
-    bool    valid;          /* the executive accepted channel 0 this step */
+    int32_t  omega_BN_B_cnt[3];  /* gyro counts, 2^-22 rad/s */
+    int32_t  whl_speed_cnt[3];   /* wheel speed counts, 2^-10 rad/s */
+    uint32_t valid;              /* bit 0..2 gyro x/y/z accepted, bit 3..5 wheel x/y/z accepted */
+    uint32_t sat;                /* same bits: accepted with the plant's SAT (full scale) bit */
 } rsp_in_t;
 
 typedef struct {
-    int32_t  u_cnt;
-    uint32_t health;        /* bits 0..7 fx status of the step, 8.. RSP_H_* */
+    int16_t  whl_torque_cnt[3];  /* wheel motor torque command, 2^-17 N m (= -M_del) */
+    uint32_t health;             /* bits 0..7 fx status of the step, 8.. RSP_H_* */
 } rsp_out_t;
 
 /* FSW_OK when p can fly; else FSW_ERR_ARG / FSW_ERR_RANGE and *why = RSP_WHY_* bits. */
 fsw_rc_t rsp_params_check(const rsp_params_t *p, uint32_t *why);
 void     rsp_init(rsp_state_t *s, const rsp_params_t *p);
-void     rsp_step(rsp_state_t *s, const rsp_params_t *p, const rsp_in_t *in,
-                       rsp_out_t *out);
+void     rsp_step(rsp_state_t *s, const rsp_params_t *p, const rsp_in_t *in, rsp_out_t *out);
 
 #endif /* FSW_RSP_H */

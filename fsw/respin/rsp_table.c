@@ -1,52 +1,120 @@
 /*
- * rsp_table.c — the respin parameter table on the wire (spec 00 §3.2).
+ * rsp_table.c — the respin parameter table on the wire (spec 00 §3.2, spec 30 §3.4, §8).
  *
- * table_id RSP_TBL_ID, layout_version RSP_TBL_LAYOUT, payload RSP_TBL_PAYLOAD
- * (20) bytes, little-endian, field by field (never a struct copy). The header revision becomes
- * rsp_params_t.revision.
+ * table_id RSP_TBL_ID, layout RSP_TBL_LAYOUT, payload RSP_TBL_PAYLOAD (128) bytes, little-endian,
+ * field by field, every field 4 bytes. The header revision becomes rsp_params_t.revision.
  *
- *   off  type  field           limits (the loader refuses anything outside, naming the field)
- *     0  u32   period_us       [1000, 1000000]
- *     4  i32   rate_max_cnt    [1, INT32_MAX]
- *     8  i32   gain_q16        [1, 2^24]
- *    12  i32   u_max_cnt       [1, 2^24]
- *    16  u16   n_sat           [1, 65535]
- *    18  u16   spare           [0, 0]
+ *   off  type     field              off  type  field
+ *     0  u32      period_us           72  u32   n_g0            [1, 1024]
+ *     4  u32      mode     [0, 1]     76  i32   gyro_max_cnt    [1, 2^22]
+ *     8  u32      act_kind [0, 1]     80  i32   whl_max_cnt
+ *    12  i32 x 3  j_q19               84  u32   n_fault
+ *    24  i32      iw_q30              88  u32   n_stale
+ *    28  i32      eps1_q30 (< eps2)   92  u32   n_whl_est
+ *    32  i32      eps2_q30            96  i32   outlier_q20
+ *    36  i32      heps_q30           100  u32   outlier_rel_q16 [1, 2^16]
+ *    40  i32      m_q24              104  i32   drift_q30
+ *    44  i32      k_q30              108  u32   drift_sh        [1, 20]
+ *    48  i32      mstar_q24          112  u32   ealarm_q32 (at most 1 J)
+ *    52  i32      mmax_q24           116  i32   done_xi_q30
+ *    56  i32      hlim_q20           120  i32   done_h_q20
+ *    60  i32      inv_ts_q16         124  u32   done_ticks      [1, 2^24]
+ *    64  i32      gguard_q20 (>= gmin)
+ *    68  i32      gmin_q20
  *
- * rsp_params_check (the executive's module check on every candidate) repeats the ranges for
- * tables that never went through the loader, and checks the period against the executive's.
+ * Every value must be positive (limits below, naming the field); rsp_params_check adds the
+ * cross-field rules (thresholds and hysteresis, m = M_max / eps1, 1/Ts against the period,
+ * J_y the largest) for tables that never went through the loader.
  */
 #include "rsp_mission.h"
 
 #define I32MAX ((int64_t)INT32_MAX)
+#define U32MAX ((int64_t)UINT32_MAX)
+#define Q30ONE ((int64_t)1073741824)
 
 static const fsw_field_lim_t RSP_LIMS[] = {
-    {0u, FSW_FT_U32, 1000, 1000000},                    /* 0 period_us */
-    {4u, FSW_FT_I32, 1, I32MAX},                        /* 1 rate_max_cnt */
-    {8u, FSW_FT_I32, 1, (int64_t)RSP_GAIN_MAX_Q16},    /* 2 gain_q16 */
-    {12u, FSW_FT_I32, 1, (int64_t)RSP_U_MAX_CNT},      /* 3 u_max_cnt */
-    {16u, FSW_FT_U16, 1, 65535},                        /* 4 n_sat */
-    {18u, FSW_FT_U16, 0, 0},                            /* 5 spare */
+    {0u, FSW_FT_U32, 1000, 1000000},     /* 0 period_us */
+    {4u, FSW_FT_U32, 0, 1},              /* 1 mode */
+    {8u, FSW_FT_U32, 0, 1},              /* 2 act_kind */
+    {12u, FSW_FT_I32, 1, I32MAX},        /* 3 j_q19[0] */
+    {16u, FSW_FT_I32, 1, I32MAX},        /* 4 j_q19[1] */
+    {20u, FSW_FT_I32, 1, I32MAX},        /* 5 j_q19[2] */
+    {24u, FSW_FT_I32, 1, I32MAX},        /* 6 iw_q30 */
+    {28u, FSW_FT_I32, 1, Q30ONE},        /* 7 eps1_q30 */
+    {32u, FSW_FT_I32, 1, Q30ONE},        /* 8 eps2_q30 */
+    {36u, FSW_FT_I32, 1, Q30ONE},        /* 9 heps_q30 */
+    {40u, FSW_FT_I32, 1, I32MAX},        /* 10 m_q24 */
+    {44u, FSW_FT_I32, 1, I32MAX},        /* 11 k_q30 */
+    {48u, FSW_FT_I32, 1, I32MAX},        /* 12 mstar_q24 */
+    {52u, FSW_FT_I32, 1, I32MAX},        /* 13 mmax_q24 */
+    {56u, FSW_FT_I32, 1, I32MAX},        /* 14 hlim_q20 */
+    {60u, FSW_FT_I32, 1, I32MAX},        /* 15 inv_ts_q16 */
+    {64u, FSW_FT_I32, 1, I32MAX},        /* 16 gguard_q20 */
+    {68u, FSW_FT_I32, 1, I32MAX},        /* 17 gmin_q20 */
+    {72u, FSW_FT_U32, 1, 1024},          /* 18 n_g0 (RSP_G0_TICKS_MAX) */
+    {76u, FSW_FT_I32, 1, 4194304},       /* 19 gyro_max_cnt: << 6 stays in int32 */
+    {80u, FSW_FT_I32, 1, I32MAX},        /* 20 whl_max_cnt */
+    {84u, FSW_FT_U32, 1, 65535},         /* 21 n_fault */
+    {88u, FSW_FT_U32, 1, 65535},         /* 22 n_stale */
+    {92u, FSW_FT_U32, 1, 65535},         /* 23 n_whl_est */
+    {96u, FSW_FT_I32, 1, I32MAX},        /* 24 outlier_q20 */
+    {100u, FSW_FT_U32, 1, 65536},        /* 25 outlier_rel_q16 */
+    {104u, FSW_FT_I32, 1, Q30ONE},       /* 26 drift_q30 */
+    {108u, FSW_FT_U32, 1, 20},           /* 27 drift_sh */
+    {112u, FSW_FT_U32, 1, U32MAX},       /* 28 ealarm_q32 */
+    {116u, FSW_FT_I32, 1, Q30ONE},       /* 29 done_xi_q30 */
+    {120u, FSW_FT_I32, 1, I32MAX},       /* 30 done_h_q20 */
+    {124u, FSW_FT_U32, 1, 16777216},     /* 31 done_ticks */
+};
+
+/* value[a] + margin <= value[b]: eps1 < eps2, g_min <= g_guard */
+static const fsw_field_rel_t RSP_RELS[] = {
+    {7u, 8u, 1}, {17u, 16u, 0},
 };
 
 const fsw_table_desc_t RSP_TBL_DESC = {
     (uint16_t)RSP_TBL_ID, (uint16_t)RSP_TBL_LAYOUT, RSP_TBL_PAYLOAD,
     RSP_LIMS, (uint32_t)(sizeof(RSP_LIMS) / sizeof(RSP_LIMS[0])),
-    NULL, 0u,
+    RSP_RELS, (uint32_t)(sizeof(RSP_RELS) / sizeof(RSP_RELS[0])),
 };
 
 uint32_t rsp_table_encode(const rsp_params_t *p, uint32_t revision, uint8_t *img, uint32_t cap)
 {
     uint32_t n = 0u;
-    if ((p != NULL) && (img != NULL) && (cap >= (FSW_TABLE_HDR_BYTES + RSP_TBL_PAYLOAD))) {
+    if ((p != NULL) && (img != NULL) && (cap >= (FSW_TABLE_HDR_BYTES + RSP_TBL_PAYLOAD)) &&
+        (p->ealarm_q32 >= 0) && (p->ealarm_q32 <= (int64_t)UINT32_MAX)) {
         fsw_wr_t w;
         fsw_wr_init(&w, &img[FSW_TABLE_HDR_BYTES], RSP_TBL_PAYLOAD);
         fsw_wr_u32(&w, p->period_us);
-        fsw_wr_i32(&w, p->rate_max_cnt);
-        fsw_wr_i32(&w, p->gain_q16);
-        fsw_wr_i32(&w, p->u_max_cnt);
-        fsw_wr_u16(&w, p->n_sat);
-        fsw_wr_u16(&w, 0u);
+        fsw_wr_u32(&w, p->mode);
+        fsw_wr_u32(&w, p->act_kind);
+        fsw_wr_i32n(&w, p->j_q19, 3u);
+        fsw_wr_i32(&w, p->iw_q30);
+        fsw_wr_i32(&w, p->eps1_q30);
+        fsw_wr_i32(&w, p->eps2_q30);
+        fsw_wr_i32(&w, p->heps_q30);
+        fsw_wr_i32(&w, p->m_q24);
+        fsw_wr_i32(&w, p->k_q30);
+        fsw_wr_i32(&w, p->mstar_q24);
+        fsw_wr_i32(&w, p->mmax_q24);
+        fsw_wr_i32(&w, p->hlim_q20);
+        fsw_wr_i32(&w, p->inv_ts_q16);
+        fsw_wr_i32(&w, p->gguard_q20);
+        fsw_wr_i32(&w, p->gmin_q20);
+        fsw_wr_u32(&w, p->n_g0);
+        fsw_wr_i32(&w, p->gyro_max_cnt);
+        fsw_wr_i32(&w, p->whl_max_cnt);
+        fsw_wr_u32(&w, p->n_fault);
+        fsw_wr_u32(&w, p->n_stale);
+        fsw_wr_u32(&w, p->n_whl_est);
+        fsw_wr_i32(&w, p->outlier_q20);
+        fsw_wr_u32(&w, p->outlier_rel_q16);
+        fsw_wr_i32(&w, p->drift_q30);
+        fsw_wr_u32(&w, p->drift_sh);
+        fsw_wr_u32(&w, (uint32_t)p->ealarm_q32);   /* range checked above */
+        fsw_wr_i32(&w, p->done_xi_q30);
+        fsw_wr_i32(&w, p->done_h_q20);
+        fsw_wr_u32(&w, p->done_ticks);
         if ((!w.err) && (w.pos == RSP_TBL_PAYLOAD)) {
             fsw_table_write_header(img, (uint16_t)RSP_TBL_ID, (uint16_t)RSP_TBL_LAYOUT,
                                    RSP_TBL_PAYLOAD, revision);
@@ -63,11 +131,35 @@ fsw_rc_t rsp_table_decode(const uint8_t *payload, uint32_t len, uint32_t revisio
         fsw_rd_t r;
         fsw_rd_init(&r, payload, len);
         p->period_us = fsw_rd_u32(&r);
-        p->rate_max_cnt = fsw_rd_i32(&r);
-        p->gain_q16 = fsw_rd_i32(&r);
-        p->u_max_cnt = fsw_rd_i32(&r);
-        p->n_sat = fsw_rd_u16(&r);
-        (void)fsw_rd_u16(&r);   /* spare */
+        p->mode = fsw_rd_u32(&r);
+        p->act_kind = fsw_rd_u32(&r);
+        fsw_rd_i32n(&r, p->j_q19, 3u);
+        p->iw_q30 = fsw_rd_i32(&r);
+        p->eps1_q30 = fsw_rd_i32(&r);
+        p->eps2_q30 = fsw_rd_i32(&r);
+        p->heps_q30 = fsw_rd_i32(&r);
+        p->m_q24 = fsw_rd_i32(&r);
+        p->k_q30 = fsw_rd_i32(&r);
+        p->mstar_q24 = fsw_rd_i32(&r);
+        p->mmax_q24 = fsw_rd_i32(&r);
+        p->hlim_q20 = fsw_rd_i32(&r);
+        p->inv_ts_q16 = fsw_rd_i32(&r);
+        p->gguard_q20 = fsw_rd_i32(&r);
+        p->gmin_q20 = fsw_rd_i32(&r);
+        p->n_g0 = fsw_rd_u32(&r);
+        p->gyro_max_cnt = fsw_rd_i32(&r);
+        p->whl_max_cnt = fsw_rd_i32(&r);
+        p->n_fault = fsw_rd_u32(&r);
+        p->n_stale = fsw_rd_u32(&r);
+        p->n_whl_est = fsw_rd_u32(&r);
+        p->outlier_q20 = fsw_rd_i32(&r);
+        p->outlier_rel_q16 = fsw_rd_u32(&r);
+        p->drift_q30 = fsw_rd_i32(&r);
+        p->drift_sh = fsw_rd_u32(&r);
+        p->ealarm_q32 = (int64_t)fsw_rd_u32(&r);
+        p->done_xi_q30 = fsw_rd_i32(&r);
+        p->done_h_q20 = fsw_rd_i32(&r);
+        p->done_ticks = fsw_rd_u32(&r);
         p->revision = revision;
         if ((!r.err) && (r.pos == len)) {
             rc = FSW_OK;

@@ -1,10 +1,12 @@
 #include "respin/respin_section.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <yaml-cpp/yaml.h>
 
 #include "respin/respin_plant.hpp"
 #include "scenario/reader.hpp"
+#include "sensors/rng.hpp"
 
 extern "C" {
 #include "rsp_tables.h"
@@ -14,11 +16,30 @@ namespace sim {
 
 namespace {
 
+void parse_wheel(const YAML::Node &w, const Reader &r, RespinSetup &m)
+{
+    r.check_keys(w, "respin.wheel", {"iw_kgm2", "torque_max_nm", "h_max_nms", "coulomb_nm", "viscous_nmps"});
+    if (w["iw_kgm2"]) { m.iw_kgm2 = r.number(w["iw_kgm2"], "respin.wheel.iw_kgm2", 1e-4, 1.0); }
+    if (w["torque_max_nm"]) { m.torque_max_nm = r.number(w["torque_max_nm"], "respin.wheel.torque_max_nm", 1e-3, 1.0); }
+    if (w["h_max_nms"]) { m.h_max_nms = r.number(w["h_max_nms"], "respin.wheel.h_max_nms", 0.1, 50.0); }
+    if (w["coulomb_nm"]) { m.coulomb_nm = r.number(w["coulomb_nm"], "respin.wheel.coulomb_nm", 0.0, 0.1); }
+    if (w["viscous_nmps"]) { m.viscous_nmps = r.number(w["viscous_nmps"], "respin.wheel.viscous_nmps", 0.0, 1e-2); }
+}
+
+void parse_gyro(const YAML::Node &g, const Reader &r, RespinSetup &b)
+{
+    r.check_keys(g, "respin.gyro", {"noise_radps", "bias_radps", "scale_ppm", "seed"});
+    if (g["noise_radps"]) { b.gyro_noise_radps = r.number(g["noise_radps"], "respin.gyro.noise_radps", 0.0, 1e-2); }
+    if (g["bias_radps"]) { b.gyro_bias_radps = r.triple(g["bias_radps"], "respin.gyro.bias_radps", -1e-2, 1e-2); }
+    if (g["scale_ppm"]) { b.gyro_scale_ppm = r.triple(g["scale_ppm"], "respin.gyro.scale_ppm", -1e4, 1e4); }
+    if (g["seed"]) { b.gyro_seed = r.unsigned64(g["seed"], "respin.gyro.seed"); }
+}
+
 class RespinSection final : public MissionSection {
 public:
     const char *mission() const override { return "RESPIN"; }
     std::vector<std::string> root_keys() const override { return {"respin"}; }
-    std::vector<std::string> tables() const override { return {"rsp_default"}; }
+    std::vector<std::string> tables() const override { return {"rsp_default", "rsp_printed", "rsp_ts05"}; }
 
     void defaults(Scenario &s) const override
     {
@@ -37,23 +58,33 @@ public:
         if (!m) {
             return;
         }
-        r.check_keys(m, "respin", {"inertia_kgm2", "w0_radps", "torque_dist_nm", "w_max_radps", "gyro", "actuator"});
-        if (m["inertia_kgm2"]) { b.inertia_kgm2 = r.number(m["inertia_kgm2"], "respin.inertia_kgm2", 1e-3, 1e6); }
-        if (m["w0_radps"]) { b.w0_radps = r.number(m["w0_radps"], "respin.w0_radps", -10.0, 10.0); }
-        if (m["torque_dist_nm"]) { b.torque_dist_nm = r.number(m["torque_dist_nm"], "respin.torque_dist_nm", -10.0, 10.0); }
-        if (m["w_max_radps"]) { b.w_max_radps = r.number(m["w_max_radps"], "respin.w_max_radps", 1e-3, 100.0); }
-        if (const YAML::Node g = m["gyro"]) {
-            r.check_keys(g, "respin.gyro", {"noise_radps", "bias_radps", "max_cnt", "seed"});
-            if (g["noise_radps"]) { b.gyro_noise_radps = r.number(g["noise_radps"], "respin.gyro.noise_radps", 0.0, 1.0); }
-            if (g["bias_radps"]) { b.gyro_bias_radps = r.number(g["bias_radps"], "respin.gyro.bias_radps", -1.0, 1.0); }
-            if (g["max_cnt"]) {
-                b.gyro_max_cnt = static_cast<std::int32_t>(r.integer(g["max_cnt"], "respin.gyro.max_cnt", 1, 2147483647));
-            }
-            if (g["seed"]) { b.gyro_seed = r.unsigned64(g["seed"], "respin.gyro.seed"); }
+        r.check_keys(m, "respin", {"g0_nms", "g_dir", "g_dir_seed", "inertia_kgm2", "omega_max_radps", "n_sub", "wheel",
+                                   "gyro"});
+        if (m["g0_nms"]) { b.g0_nms = r.number(m["g0_nms"], "respin.g0_nms", 1e-3, 1000.0); }
+        if (m["g_dir"] && m["g_dir_seed"]) {
+            r.fail("respin.g_dir_seed", m["g_dir_seed"], "give g_dir or g_dir_seed, not both");
         }
-        if (const YAML::Node a = m["actuator"]) {
-            r.check_keys(a, "respin.actuator", {"max_nm"});
-            if (a["max_nm"]) { b.act_max_nm = r.number(a["max_nm"], "respin.actuator.max_nm", 1e-6, 100.0); }
+        if (m["g_dir"]) {
+            const std::array<double, 3> d = r.triple(m["g_dir"], "respin.g_dir", -1e3, 1e3);
+            const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (!(n > 1e-9)) {
+                r.fail("respin.g_dir", m["g_dir"], "must not be the zero vector");
+            }
+            b.g_dir = {{d[0] / n, d[1] / n, d[2] / n}};
+            b.g_dir_random = false;
+        }
+        if (m["g_dir_seed"]) {
+            b.g_dir_seed = r.unsigned64(m["g_dir_seed"], "respin.g_dir_seed");
+            b.g_dir_random = true;
+        }
+        if (m["inertia_kgm2"]) { b.j_kgm2 = r.triple(m["inertia_kgm2"], "respin.inertia_kgm2", 1.0, 1e5); }
+        if (m["omega_max_radps"]) { b.omega_max_radps = r.number(m["omega_max_radps"], "respin.omega_max_radps", 1e-3, 10.0); }
+        if (m["n_sub"]) { b.n_sub = static_cast<int>(r.integer(m["n_sub"], "respin.n_sub", 1, 100)); }
+        if (const YAML::Node w = m["wheel"]) {
+            parse_wheel(w, r, b);
+        }
+        if (const YAML::Node g = m["gyro"]) {
+            parse_gyro(g, r, b);
         }
     }
 
@@ -76,10 +107,46 @@ const MissionSection &respin_section()
     return sec;
 }
 
+const RespinSetup &respin_setup(const Scenario &s)
+{
+    return s.mission_part<RespinScenario>().body;
+}
+
+ref::GyrostatModel respin_model(const RespinSetup &b)
+{
+    ref::GyrostatModel m;
+    m.j_kgm2 = b.j_kgm2;
+    m.iw_kgm2 = b.iw_kgm2;
+    m.torque_max_nm = b.torque_max_nm;
+    m.h_max_nms = b.h_max_nms;
+    m.coulomb_nm = b.coulomb_nm;
+    m.viscous_nmps = b.viscous_nmps;
+    return m;
+}
+
 rsp_params_t respin_boot_table(const std::string &name)
 {
     if (name == "rsp_default") { return RSP_TBL_DEFAULT; }
+    if (name == "rsp_printed") { return RSP_TBL_PRINTED; }
+    if (name == "rsp_ts05") { return RSP_TBL_TS05; }
     throw std::invalid_argument("unknown respin table '" + name + "'");
+}
+
+std::array<double, 3> respin_initial_direction(const RespinSetup &b)
+{
+    if (!b.g_dir_random) {
+        return b.g_dir;
+    }
+    // Uniform on the sphere: a normalised 3-D standard normal (stream 2 of the seed, independent of
+    // the gyro's streams). A draw of norm below 1e-6 (probability ~1e-19) is redrawn.
+    Rng rng(b.g_dir_seed, 2u);
+    for (;;) {
+        const double x = rng.gaussian(), y = rng.gaussian(), z = rng.gaussian();
+        const double n = std::sqrt(x * x + y * y + z * z);
+        if (n > 1e-6) {
+            return {{x / n, y / n, z / n}};
+        }
+    }
 }
 
 }  // namespace sim

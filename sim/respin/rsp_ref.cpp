@@ -1,26 +1,563 @@
 #include "respin/rsp_ref.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
+
+#include <Eigen/Dense>
 
 namespace ref {
 
+namespace {
+
+double sgn(double x) { return x >= 0.0 ? 1.0 : -1.0; }   // spec 30 §3.1: Sgn 0 = +1
+
+double clampd(double x, double lo, double hi) { return std::min(std::max(x, lo), hi); }
+
+double norm3(const V3 &v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+}  // namespace
+
 RespinTable dequantise(const rsp_params_t &p)
 {
+    // Every field is an integer times a power of two: ldexp is exact, so thresholds compare in
+    // double exactly as the integers compare in the flight code (eps1 + h_eps included: both are
+    // multiples of 2^-30 below 2, their sum is exact).
     RespinTable t;
-    t.k_nms = std::ldexp(static_cast<double>(p.gain_q16), -12);
-    t.u_max_nm = std::ldexp(static_cast<double>(p.u_max_cnt), -16);
-    t.rate_max_radps = std::ldexp(static_cast<double>(p.rate_max_cnt), -20);
-    t.n_sat = p.n_sat;
+    t.period_us = p.period_us;
+    t.ts_s = static_cast<double>(p.period_us) * 1e-6;
+    t.mode = p.mode;
+    t.act_kind = p.act_kind;
+    for (std::size_t i = 0; i < 3u; ++i) {
+        t.j_kgm2[i] = std::ldexp(static_cast<double>(p.j_q19[i]), -19);
+    }
+    t.iw_kgm2 = std::ldexp(static_cast<double>(p.iw_q30), -30);
+    t.eps1 = std::ldexp(static_cast<double>(p.eps1_q30), -30);
+    t.eps2 = std::ldexp(static_cast<double>(p.eps2_q30), -30);
+    t.heps = std::ldexp(static_cast<double>(p.heps_q30), -30);
+    t.m_nm = std::ldexp(static_cast<double>(p.m_q24), -24);
+    t.k_pnms = std::ldexp(static_cast<double>(p.k_q30), -30);
+    t.mstar_nm = std::ldexp(static_cast<double>(p.mstar_q24), -24);
+    t.mmax_nm = std::ldexp(static_cast<double>(p.mmax_q24), -24);
+    t.hlim_nms = std::ldexp(static_cast<double>(p.hlim_q20), -20);
+    t.inv_ts_hz = std::ldexp(static_cast<double>(p.inv_ts_q16), -16);
+    t.gguard_nms = std::ldexp(static_cast<double>(p.gguard_q20), -20);
+    t.gmin_nms = std::ldexp(static_cast<double>(p.gmin_q20), -20);
+    t.n_g0 = p.n_g0;
+    t.gyro_max_cnt = p.gyro_max_cnt;
+    t.whl_max_cnt = p.whl_max_cnt;
+    t.n_fault = p.n_fault;
+    t.n_stale = p.n_stale;
+    t.n_whl_est = p.n_whl_est;
+    t.outlier_nms = std::ldexp(static_cast<double>(p.outlier_q20), -20);
+    t.outlier_rel = std::ldexp(static_cast<double>(p.outlier_rel_q16), -16);
+    t.drift = std::ldexp(static_cast<double>(p.drift_q30), -30);
+    t.drift_sh = p.drift_sh;
+    t.ealarm_j = std::ldexp(static_cast<double>(p.ealarm_q32), -32);
+    t.done_xi = std::ldexp(static_cast<double>(p.done_xi_q30), -30);
+    t.done_h_nms = std::ldexp(static_cast<double>(p.done_h_q20), -20);
+    t.done_ticks = p.done_ticks;
     return t;
 }
 
-RespinOut rsp_law(const RespinTable &t, double omega_radps)
+// ------------------------------------------------------------------------------------------------
+// Law
+
+V3 rsp_distribute(const RespinTable &t, const V3 &mcmd_nm, const V3 &h_nms, std::array<bool, 3> *clip,
+                  std::array<bool, 3> *hbound)
 {
-    RespinOut o;
-    const double u = -t.k_nms * omega_radps;
-    o.limited = std::fabs(u) > t.u_max_nm;
-    o.tau_nm = o.limited ? std::copysign(t.u_max_nm, u) : u;
+    V3 out{};
+    for (std::size_t i = 0; i < 3u; ++i) {
+        double m = mcmd_nm[i];
+        (*clip)[i] = std::fabs(m) > t.mmax_nm;
+        m = clampd(m, -t.mmax_nm, t.mmax_nm);
+        // H after the hold is H - M Ts: keep it within +-h_lim. The flight multiplies by the
+        // table's 1/Ts (no division), so the reference does too.
+        const double lo = (h_nms[i] - t.hlim_nms) * t.inv_ts_hz;
+        const double hi = (h_nms[i] + t.hlim_nms) * t.inv_ts_hz;
+        const double mc = clampd(m, lo, hi);
+        (*hbound)[i] = mc < m || mc > m;   // the clamp changed the command
+        // Past h_lim (friction, quantisation) the clamp commands a moment back; the final clip
+        // keeps that within the motor limit.
+        out[i] = clampd(mc, -t.mmax_nm, t.mmax_nm);
+    }
+    return out;
+}
+
+RespinLawOut rsp_law_tick(const RespinTable &t, const RespinLawState &s, const V3 &g, const V3 &h_nms)
+{
+    RespinLawOut o;
+    RespinLawState n = s;
+    o.g = g;
+    const double xa = std::sqrt(g[0] * g[0] + g[2] * g[2]);
+    o.xi_abs = xa;
+
+    // Region (§3.5 hysteresis; at the first tick the plain thresholds of §3.2). Guard: no FAR.
+    std::uint32_t r = s.region;
+    if (!s.started) {
+        r = xa < t.eps1 ? RSP_RG_LIN : (xa <= t.eps2 ? RSP_RG_MID : RSP_RG_FAR);
+        if (s.guard && r == RSP_RG_FAR) {
+            r = RSP_RG_MID;
+        }
+        n.a_f = g[1] >= 0.0 ? 1 : -1;     // initial a_f = Sgn g_y(t0), both modes
+        n.started = true;
+    } else {
+        const bool far_ok = !s.guard;
+        switch (s.region) {
+        case RSP_RG_LIN:
+            if (far_ok && xa > t.eps2 + t.heps) {
+                r = RSP_RG_FAR;
+            } else if (xa > t.eps1 + t.heps) {
+                r = RSP_RG_MID;
+            }
+            break;
+        case RSP_RG_MID:
+            if (far_ok && xa > t.eps2 + t.heps) {
+                r = RSP_RG_FAR;
+            } else if (xa < t.eps1 - t.heps) {
+                r = RSP_RG_LIN;
+            }
+            break;
+        default:   // FAR
+            if (xa < t.eps1 - t.heps) {
+                r = RSP_RG_LIN;
+            } else if (xa < t.eps2 - t.heps) {
+                r = RSP_RG_MID;
+            }
+            break;
+        }
+        o.switched = r != s.region;
+    }
+    n.region = r;
+
+    // a_f: NEAREST re-selects the nearer of +-e_y while FAR (guard: while |xi| > eps2), keeping it
+    // on a tie (C_phi = 0: Sgn 0 = +1); otherwise it is latched. PRINTED never re-selects.
+    const bool free_af = r == RSP_RG_FAR || (s.guard && xa > t.eps2);
+    if (t.mode == RSP_MODE_NEAREST && free_af && static_cast<double>(n.a_f) * g[1] < 0.0) {
+        n.a_f = -n.a_f;
+    }
+    n.latched = !free_af;
+    const double af = static_cast<double>(n.a_f);
+    o.xi = {{-af * g[2], 0.0, af * g[0]}};
+    o.cphi = af * g[1];
+    if (r != RSP_RG_LIN && xa > 0.0) {   // hysteresis keeps |xi| >= eps1 - h_eps here
+        o.e_xi = {{o.xi[0] / xa, 0.0, o.xi[2] / xa}};
+    }
+
+    // Law (§3.2), D = I, H_f = 0.
+    for (std::size_t i = 0; i < 3u; ++i) {
+        if (r == RSP_RG_LIN) {
+            o.mcmd_nm[i] = -t.m_nm * (o.xi[i] - t.k_pnms * h_nms[i]);
+        } else if (r == RSP_RG_MID) {
+            o.mcmd_nm[i] = -t.m_nm * (o.e_xi[i] * sgn(o.cphi) - t.k_pnms * h_nms[i]);
+        } else {
+            o.mcmd_nm[i] = -t.mstar_nm * sgn(g[i]);
+        }
+    }
+    o.mdel_nm = rsp_distribute(t, o.mcmd_nm, h_nms, &o.clip, &o.hbound);
+    for (std::size_t i = 0; i < 3u; ++i) {
+        o.whl_torque_nm[i] = -o.mdel_nm[i];
+    }
+    o.next = n;
     return o;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Module
+
+void RespinRef::reset(const RespinTable &t)
+{
+    *this = RespinRef();
+    t_ = t;
+}
+
+RespinRefOut RespinRef::step(const RespinRefIn &in)
+{
+    RespinRefOut o;
+    const RespinTable &t = t_;
+
+    // 1. Inputs. The gyro is all-or-nothing: any axis missing, SAT or at full scale -> invalid.
+    V3 w{}, h{};
+    bool gyro_ok = (in.valid & 0x7u) == 0x7u && (in.sat & 0x7u) == 0u;
+    for (std::size_t i = 0; i < 3u; ++i) {
+        const std::int64_t c = in.gyro_cnt[i];
+        gyro_ok = gyro_ok && (c < t.gyro_max_cnt && -c < t.gyro_max_cnt);
+        w[i] = static_cast<double>(in.gyro_cnt[i]) * kRspGyroLsbRadps;
+    }
+    bool whl_ok = true;
+    for (std::size_t i = 0; i < 3u; ++i) {
+        const std::uint32_t bit = 1u << (3u + i);
+        const std::int64_t c = in.whl_cnt[i];
+        const bool ok = (in.valid & bit) != 0u && (in.sat & bit) == 0u && c <= t.whl_max_cnt && -c <= t.whl_max_cnt;
+        if (ok) {
+            h[i] = t.iw_kgm2 * (static_cast<double>(in.whl_cnt[i]) * kRspWhlLsbRadps);
+            whl_miss_[i] = 0u;
+            h_last_nms_[i] = h[i];
+        } else if (whl_miss_[i] < t.n_whl_est) {
+            // §8: a missing wheel speed for <= n_whl_est ticks is propagated from the last command.
+            ++whl_miss_[i];
+            h[i] = h_last_nms_[i] - mdel_last_nm_[i] * t.ts_s;
+            h_last_nms_[i] = h[i];
+            o.health |= RSP_H_WHL_EST;
+        } else {
+            whl_ok = false;
+            h[i] = h_last_nms_[i];
+        }
+    }
+    o.h_nms = h;
+    if (!gyro_ok) {
+        o.health |= RSP_H_GYRO_BAD;
+    }
+    if (!whl_ok) {
+        o.health |= RSP_H_WHL_BAD;
+    }
+
+    V3 gv{};
+    for (std::size_t i = 0; i < 3u; ++i) {
+        gv[i] = t.j_kgm2[i] * w[i] + h[i];
+    }
+    const double gabs = norm3(gv);
+    bool valid = gyro_ok && whl_ok;
+
+    // 2. g0 (§3.6): the mean |G| over the first n_g0 valid ticks, zero command meanwhile.
+    if (phase_ == RSP_PH_G0) {
+        if (valid) {
+            g0_sum_nms_ += gabs;
+            ++n_acc_;
+            if (n_acc_ >= t.n_g0) {
+                g0_nms_ = g0_sum_nms_ / static_cast<double>(n_acc_);
+                r0_pnms_ = 1.0 / g0_nms_;    // the only division by g0
+                phase_ = g0_nms_ < t.gmin_nms ? RSP_PH_LOW : RSP_PH_RUN;
+                law_.guard = g0_nms_ < t.gguard_nms;
+            }
+        }
+        if (phase_ == RSP_PH_G0) {
+            o.health |= RSP_H_G0_WAIT;
+        }
+        valid = false;   // no law this tick, whatever the inputs
+    } else if (phase_ == RSP_PH_RUN && valid) {
+        const double gate = std::max(t.outlier_rel * g0_nms_, t.outlier_nms);
+        if (std::fabs(gabs - g0_nms_) > gate) {
+            o.health |= RSP_H_OUTLIER;
+            valid = false;
+        }
+    }
+    if (phase_ == RSP_PH_LOW) {
+        o.health |= RSP_H_LOW_MOMENTUM;
+        valid = false;
+    }
+    if (law_.guard) {
+        o.health |= RSP_H_GUARD;
+    }
+    o.phase = phase_;
+    o.g0_nms = g0_nms_;
+    o.valid = valid;
+
+    if (valid) {
+        // 3-6. The law.
+        for (std::size_t i = 0; i < 3u; ++i) {
+            o.g[i] = gv[i] * r0_pnms_;
+        }
+        o.rho = gabs * r0_pnms_ - 1.0;
+        const RespinLawOut lo = rsp_law_tick(t, law_, o.g, h);
+        if (lo.switched) {
+            ++n_switch_;
+        }
+        law_ = lo.next;
+        o.xi_abs = lo.xi_abs;
+        o.cphi = lo.cphi;
+        o.e_xi = lo.e_xi;
+        o.mcmd_nm = lo.mcmd_nm;
+        o.mdel_nm = lo.mdel_nm;
+        o.whl_torque_nm = lo.whl_torque_nm;
+        for (std::size_t i = 0; i < 3u; ++i) {
+            if (lo.clip[i]) {
+                o.health |= RSP_H_CLIP;
+            }
+            if (lo.hbound[i]) {
+                o.health |= RSP_H_HBOUND;
+            }
+        }
+
+        // 7. Energy bookkeeping (§8) from measured quantities: trapezoid work between valid ticks.
+        double tj = 0.0;
+        for (std::size_t i = 0; i < 3u; ++i) {
+            tj += 0.5 * (t.j_kgm2[i] * w[i]) * w[i];
+        }
+        if (!have_t0_) {
+            t0_j_ = tj;
+            w_j_ = 0.0;
+            have_t0_ = true;
+        } else if (have_prev_) {
+            double dw = 0.0;
+            for (std::size_t i = 0; i < 3u; ++i) {
+                dw += 0.5 * (w[i] + omega_prev_radps_[i]) * (h[i] - h_prev_nms_[i]);
+            }
+            w_j_ -= dw;
+        }
+        omega_prev_radps_ = w;
+        h_prev_nms_ = h;
+        have_prev_ = true;
+        o.t_j = tj;
+        o.w_j = w_j_;
+        o.re_j = tj - t0_j_ - w_j_;
+        if (o.re_j > t.ealarm_j) {
+            o.health |= RSP_H_ENERGY_ALARM;
+        }
+
+        // Done (§3.7): |xi| < done_xi, C_phi > 0, |H_i - H_f| < done_h, for done_ticks ticks.
+        bool in_tol = lo.xi_abs < t.done_xi && lo.cphi > 0.0;
+        for (std::size_t i = 0; i < 3u; ++i) {
+            in_tol = in_tol && std::fabs(h[i]) < t.done_h_nms;
+        }
+        done_run_ = in_tol ? done_run_ + 1u : 0u;
+    } else {
+        ++n_invalid_;
+        // Zero command; region, a_f and latch kept (§3.7 step 1).
+        if (phase_ == RSP_PH_RUN) {
+            o.g = {{gv[0] * r0_pnms_, gv[1] * r0_pnms_, gv[2] * r0_pnms_}};
+        }
+    }
+    mdel_last_nm_ = o.mdel_nm;
+    o.region = law_.region;
+    o.a_f = law_.a_f;
+    o.latched = law_.latched;
+    o.guard = law_.guard;
+    o.done_run = done_run_;
+    o.done = phase_ == RSP_PH_RUN && done_run_ >= t.done_ticks;
+    if (o.done) {
+        o.health |= RSP_H_DONE;
+    }
+    o.n_switch = n_switch_;
+    return o;
+}
+
+std::int32_t torque_counts(double torque_nm)
+{
+    const double q = torque_nm / kRspTorqueLsbNm;
+    if (!std::isfinite(q)) {
+        return 0;
+    }
+    // Clamp before converting (an out-of-range double -> int conversion is UB); std::round rounds
+    // half away from zero, as the flight code's single rounding does.
+    return static_cast<std::int32_t>(std::round(clampd(q, -32768.0, 32767.0)));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Gyrostat
+
+namespace {
+
+// Integrator state: G (0..2), H (3..5), q (6..9), work (10).
+constexpr std::size_t kNy = 11u;
+using Y = std::array<double, kNy>;
+
+struct Deriv {
+    const GyrostatModel &m;
+    V3 tau;                                  // motor torque after the motor limit (ZOH)
+    std::array<bool, 3> *cut;
+
+    Y operator()(const Y &y) const
+    {
+        Y d{};
+        V3 w{};
+        for (std::size_t i = 0; i < 3u; ++i) {
+            w[i] = (y[i] - y[3u + i]) / m.j_kgm2[i];
+        }
+        for (std::size_t i = 0; i < 3u; ++i) {
+            const double hi = y[3u + i];
+            const double om = hi / m.iw_kgm2;
+            // Bearing friction on the wheel; at Omega = 0 exactly no Coulomb term (no chatter at rest).
+            const double fr = -(om > 0.0 ? m.coulomb_nm : (om < 0.0 ? -m.coulomb_nm : 0.0)) - m.viscous_nmps * om;
+            double hd = tau[i] + fr;
+            if (std::fabs(hi) >= m.h_max_nms && hd * hi > 0.0) {   // the hard limit: no torque outwards
+                hd = 0.0;
+                (*cut)[i] = true;
+            }
+            d[3u + i] = hd;
+        }
+        // dG/dt = -omega x G = G x omega
+        d[0] = y[1] * w[2] - y[2] * w[1];
+        d[1] = y[2] * w[0] - y[0] * w[2];
+        d[2] = y[0] * w[1] - y[1] * w[0];
+        // dq/dt = 1/2 q (x) (0, omega)
+        const double qw = y[6], qx = y[7], qy = y[8], qz = y[9];
+        d[6] = 0.5 * (-qx * w[0] - qy * w[1] - qz * w[2]);
+        d[7] = 0.5 * (qw * w[0] + qy * w[2] - qz * w[1]);
+        d[8] = 0.5 * (qw * w[1] + qz * w[0] - qx * w[2]);
+        d[9] = 0.5 * (qw * w[2] + qx * w[1] - qy * w[0]);
+        // d(work)/dt = omega^T M, M = -dH/dt (the internal moment on the body)
+        d[10] = -(w[0] * d[3] + w[1] * d[4] + w[2] * d[5]);
+        return d;
+    }
+};
+
+Y axpy(const Y &y, const Y &k, double a)
+{
+    Y r{};
+    for (std::size_t i = 0; i < kNy; ++i) {
+        r[i] = y[i] + a * k[i];
+    }
+    return r;
+}
+
+}  // namespace
+
+GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g0_nms)
+{
+    GyrostatState s;
+    const double n = norm3(g_dir);
+    for (std::size_t i = 0; i < 3u; ++i) {
+        s.g_nms[i] = n > 0.0 ? g0_nms * g_dir[i] / n : 0.0;
+        s.h_nms[i] = 0.0;
+    }
+    s.g0_nms = g0_nms;
+    s.t0_j = gyrostat_energy_j(m, s);
+    s.work_j = 0.0;
+    return s;
+}
+
+V3 gyrostat_omega(const GyrostatModel &m, const GyrostatState &s)
+{
+    return {{(s.g_nms[0] - s.h_nms[0]) / m.j_kgm2[0], (s.g_nms[1] - s.h_nms[1]) / m.j_kgm2[1],
+             (s.g_nms[2] - s.h_nms[2]) / m.j_kgm2[2]}};
+}
+
+double gyrostat_energy_j(const GyrostatModel &m, const GyrostatState &s)
+{
+    const V3 w = gyrostat_omega(m, s);
+    return 0.5 * (m.j_kgm2[0] * w[0] * w[0] + m.j_kgm2[1] * w[1] * w[1] + m.j_kgm2[2] * w[2] * w[2]);
+}
+
+V3 gyrostat_g_inertial(const GyrostatState &s)
+{
+    const double qw = s.q_bi[0], qx = s.q_bi[1], qy = s.q_bi[2], qz = s.q_bi[3];
+    const V3 &v = s.g_nms;
+    // v_I = q v_B q*: the rotation matrix of q (Hamilton) applied to v.
+    return {{(1.0 - 2.0 * (qy * qy + qz * qz)) * v[0] + 2.0 * (qx * qy - qw * qz) * v[1] + 2.0 * (qx * qz + qw * qy) * v[2],
+             2.0 * (qx * qy + qw * qz) * v[0] + (1.0 - 2.0 * (qx * qx + qz * qz)) * v[1] + 2.0 * (qy * qz - qw * qx) * v[2],
+             2.0 * (qx * qz - qw * qy) * v[0] + 2.0 * (qy * qz + qw * qx) * v[1] + (1.0 - 2.0 * (qx * qx + qy * qy)) * v[2]}};
+}
+
+GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &torque_cmd_nm, double dt_s, int n_sub)
+{
+    GyrostatTick r;
+    for (std::size_t i = 0; i < 3u; ++i) {
+        const double c = torque_cmd_nm[i];
+        r.motor_clip[i] = std::fabs(c) > m.torque_max_nm;
+        r.torque_nm[i] = clampd(c, -m.torque_max_nm, m.torque_max_nm);
+    }
+    const int n = std::max(n_sub, 1);
+    const double h = dt_s / static_cast<double>(n);
+    const Deriv f{m, r.torque_nm, &r.hlim_cut};
+    Y y{};
+    for (std::size_t i = 0; i < 3u; ++i) {
+        y[i] = s.g_nms[i];
+        y[3u + i] = s.h_nms[i];
+    }
+    for (std::size_t i = 0; i < 4u; ++i) {
+        y[6u + i] = s.q_bi[i];
+    }
+    y[10] = s.work_j;
+    for (int step = 0; step < n; ++step) {
+        const Y k1 = f(y);
+        const Y k2 = f(axpy(y, k1, 0.5 * h));
+        const Y k3 = f(axpy(y, k2, 0.5 * h));
+        const Y k4 = f(axpy(y, k3, h));
+        for (std::size_t i = 0; i < kNy; ++i) {
+            y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        // A step that crosses the hard limit overshoots it by at most M_max h; the wheel stops at the
+        // limit instead. The removed momentum is an instantaneous exchange with the body, so its
+        // work -omega . dH is booked (keeps T0 + work = T to first order in the overshoot).
+        for (std::size_t i = 0; i < 3u; ++i) {
+            const double hi = y[3u + i];
+            if (std::fabs(hi) > m.h_max_nms) {
+                const double dh = std::copysign(m.h_max_nms, hi) - hi;
+                const double wi = (y[i] - hi) / m.j_kgm2[i];
+                y[10] -= wi * dh;
+                y[3u + i] += dh;
+                r.hlim_cut[i] = true;
+            }
+        }
+        // |G| is invariant: re-project onto g0 (spec 30 §2). q back onto the unit sphere.
+        const double gn = std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+        if (gn > 0.0 && std::isfinite(gn)) {
+            const double sc = s.g0_nms / gn;
+            y[0] *= sc;
+            y[1] *= sc;
+            y[2] *= sc;
+        }
+        const double qn = std::sqrt(y[6] * y[6] + y[7] * y[7] + y[8] * y[8] + y[9] * y[9]);
+        if (qn > 0.0 && std::isfinite(qn)) {
+            for (std::size_t i = 6u; i < 10u; ++i) {
+                y[i] /= qn;
+            }
+        }
+    }
+    for (std::size_t i = 0; i < 3u; ++i) {
+        s.g_nms[i] = y[i];
+        s.h_nms[i] = y[3u + i];
+    }
+    for (std::size_t i = 0; i < 4u; ++i) {
+        s.q_bi[i] = y[6u + i];
+    }
+    s.work_j = y[10];
+    return r;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Linearisation
+
+LinResult linearise_lin(const V3 &j_kgm2, double g0_nms, double m_nm, double k_pnms, double xi_sign)
+{
+    // x = (G, H); dG/dt = G x omega, omega = J^-1 (G - H); dH/dt = -M = m [s xi - k H],
+    // xi = g x e_y = -[e_y]x G / g0. At G = g0 e_y, H = 0, omega = (g0/J_y) e_y:
+    //   dG' = -[omega]x dG + [G]x J^-1 (dG - dH)
+    //   dH' = -(s m / g0) [e_y]x dG - m k dH
+    using M3 = Eigen::Matrix3d;
+    auto skew = [](const Eigen::Vector3d &a) {
+        M3 s;
+        s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+        return s;
+    };
+    const Eigen::Vector3d ey(0.0, 1.0, 0.0);
+    const Eigen::Vector3d g = g0_nms * ey;
+    const M3 ji = Eigen::Vector3d(1.0 / j_kgm2[0], 1.0 / j_kgm2[1], 1.0 / j_kgm2[2]).asDiagonal();
+    const Eigen::Vector3d w = ji * g;
+    Eigen::Matrix<double, 6, 6> a = Eigen::Matrix<double, 6, 6>::Zero();
+    a.block<3, 3>(0, 0) = -skew(w) + skew(g) * ji;
+    a.block<3, 3>(0, 3) = -skew(g) * ji;
+    a.block<3, 3>(3, 0) = -(xi_sign * m_nm / g0_nms) * skew(ey);
+    a.block<3, 3>(3, 3) = -(m_nm * k_pnms) * M3::Identity();
+
+    LinResult r;
+    for (Eigen::Index i = 0; i < 6; ++i) {
+        for (Eigen::Index j = 0; j < 6; ++j) {
+            r.a[static_cast<std::size_t>(i * 6 + j)] = a(i, j);
+        }
+    }
+    // G_y's row and column are zero at this point (omega, G parallel to e_y): the |G| direction,
+    // eigenvalue 0 (the family of equilibria c e_y). Drop it.
+    const std::array<Eigen::Index, 5> keep{{0, 2, 3, 4, 5}};
+    Eigen::Matrix<double, 5, 5> b;
+    for (std::size_t i = 0; i < 5u; ++i) {
+        for (std::size_t j = 0; j < 5u; ++j) {
+            b(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = a(keep[i], keep[j]);
+        }
+    }
+    const Eigen::EigenSolver<Eigen::Matrix<double, 5, 5>> es(b, false);
+    bool any = false;
+    for (Eigen::Index i = 0; i < 5; ++i) {
+        const std::complex<double> e = es.eigenvalues()(i);
+        r.eig_re.push_back(e.real());
+        r.eig_im.push_back(e.imag());
+        if (std::abs(e) > 1e-12 && (!any || e.real() > r.slowest_re)) {
+            r.slowest_re = e.real();
+            any = true;
+        }
+    }
+    return r;
 }
 
 }  // namespace ref

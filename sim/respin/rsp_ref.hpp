@@ -1,8 +1,26 @@
-// rsp_ref.hpp — the RESPIN law in double precision: the reference the fixed-point flight
-// code is proven against (golden tests, the reference backend of `sil run --fsw ref`). It reads
-// the same table, dequantised: K = gain_q16 / 2^12 N m s, u_max = u_max_cnt * 2^-16 N m.
+// rsp_ref.hpp — the RESPIN law of spec 30 in double precision: the reference the fixed-point flight
+// code (fsw/respin) is proven against, and the rigid-gyrostat wheel plant both the SIL plant
+// (respin_plant) and the reference closed loop integrate.
+//
+// It reads the flight table rsp_params_t, dequantised to SI (dequantise), and the same integer
+// counts the flight code sees (RespinRefIn: gyro 2^-22 rad/s, wheel speed 2^-10 rad/s), and runs the
+// same state machine (spec 30 §3.5-§3.7): g0 averaged over n_g0 valid ticks with zero command,
+// low-momentum rule, small-|G| guard, regions LIN / MID / FAR with hysteresis, NEAREST re-selection
+// and latch of a_f or the PRINTED fixed a_f, the law of §3.2, the wheel distribution of §4 (per-axis
+// clip, momentum-bound clamp, final clip), the energy bookkeeping T, W, r_E of §8 and the done flag.
+// Simplified input handling (the golden vectors judge the law, not the validation): an invalid or
+// saturated gyro word commands zero and keeps the state; a missing wheel speed is propagated for
+// n_wheel_est ticks from the last command as in §8, beyond that the tick is invalid; the |G| outlier
+// gate of §8 applies; staleness (frozen words) and G_DRIFT are not modelled.
+//
+// Sign chain (spec 30 §9): M is the internal moment on the body, M = -dH/dt; the wheel motor torque
+// command is -M. Units are SI with the unit in the name; "Sgn 0 = +1" everywhere.
 #ifndef SIM_RSP_REF_HPP
 #define SIM_RSP_REF_HPP
+
+#include <array>
+#include <cstdint>
+#include <vector>
 
 extern "C" {
 #include "rsp.h"
@@ -10,21 +28,194 @@ extern "C" {
 
 namespace ref {
 
-struct RespinTable {
-    double k_nms = 0.0;        // tau = -K omega
-    double u_max_nm = 0.0;
-    double rate_max_radps = 0.0;
-    unsigned n_sat = 0u;
-};
+using V3 = std::array<double, 3>;
 
-struct RespinOut {
-    double tau_nm = 0.0;
-    bool limited = false;
+// Channel LSBs (fsw/respin/rsp_iface.py) and the command's code range.
+constexpr double kRspGyroLsbRadps = 1.0 / 4194304.0;     // sensors 0..2: 2^-22 rad/s
+constexpr double kRspWhlLsbRadps = 1.0 / 1024.0;         // sensors 3..5: 2^-10 rad/s
+constexpr double kRspTorqueLsbNm = 1.0 / 131072.0;       // actuators 0..2: 2^-17 N m
+constexpr std::int32_t kRspGyroMaxCnt = 4194304;         // +-2^22 counts = +-1 rad/s, full scale = SAT
+constexpr std::int32_t kRspWhlMaxCnt = 614400;           // +-600 rad/s
+constexpr std::int32_t kRspTorqueMaxCnt = 32767;         // int16 code range (+-0.25 N m)
+
+// The flight table in SI (exact dequantisation: every field is an integer times a power of two).
+struct RespinTable {
+    std::uint32_t period_us = 100000u;
+    double ts_s = 0.1;
+    std::uint32_t mode = RSP_MODE_NEAREST;
+    std::uint32_t act_kind = RSP_ACT_WHEELS;
+    V3 j_kgm2{{0.0, 0.0, 0.0}};
+    double iw_kgm2 = 0.0;
+    double eps1 = 0.0, eps2 = 0.0, heps = 0.0;
+    double m_nm = 0.0;            // law gain m
+    double k_pnms = 0.0;          // k, 1/(N m s)
+    double mstar_nm = 0.0;        // far-law moment M*
+    double mmax_nm = 0.0;         // per-axis motor limit M_max
+    double hlim_nms = 0.0;        // momentum-bound clamp h_lim
+    double inv_ts_hz = 0.0;       // 1/Ts as the table states it (the clamp multiplies by it)
+    double gguard_nms = 0.0, gmin_nms = 0.0;
+    std::uint32_t n_g0 = 0u;
+    std::int32_t gyro_max_cnt = 0, whl_max_cnt = 0;
+    std::uint32_t n_fault = 0u, n_stale = 0u, n_whl_est = 0u;
+    double outlier_nms = 0.0, outlier_rel = 0.0;
+    double drift = 0.0;
+    std::uint32_t drift_sh = 0u;
+    double ealarm_j = 0.0;
+    double done_xi = 0.0, done_h_nms = 0.0;
+    std::uint32_t done_ticks = 0u;
 };
 
 RespinTable dequantise(const rsp_params_t &p);
-// The command for a measured body rate (rad/s).
-RespinOut rsp_law(const RespinTable &t, double omega_radps);
+
+// ------------------------------------------------------------------------------------------------
+// The law, one tick (spec 30 §3.1-§3.5, §4), pure: state in, state out. Usable for single-tick
+// golden cases: g = G r0 (not renormalised), h_nms the wheel momentum used.
+
+struct RespinLawState {
+    bool started = false;          // false: the next tick is the first law tick (plain thresholds, a_f = Sgn g_y)
+    std::uint32_t region = RSP_RG_FAR;
+    std::int32_t a_f = 1;
+    bool latched = false;
+    bool guard = false;            // g0 < g_guard: FAR not allowed (set when g0 freezes)
+};
+
+struct RespinLawOut {
+    RespinLawState next;           // the state after the tick
+    bool switched = false;         // region changed this tick (not counted on the first tick)
+    V3 g{{0.0, 0.0, 0.0}};
+    V3 xi{{0.0, 0.0, 0.0}};        // g x f, f = a_f e_y (a_f after the tick's re-selection)
+    double xi_abs = 0.0;           // |xi| = sqrt(g_x^2 + g_z^2)
+    double cphi = 0.0;             // C_phi = a_f g_y
+    V3 e_xi{{0.0, 0.0, 0.0}};      // xi / |xi| where region != LIN, else 0
+    V3 mcmd_nm{{0.0, 0.0, 0.0}};   // law moment on the body (before distribution)
+    V3 mdel_nm{{0.0, 0.0, 0.0}};   // after per-axis clip, momentum-bound clamp and final clip
+    V3 whl_torque_nm{{0.0, 0.0, 0.0}};  // wheel motor torque command = -mdel
+    std::array<bool, 3> clip{{false, false, false}};    // |mcmd_i| > M_max
+    std::array<bool, 3> hbound{{false, false, false}};  // the momentum-bound clamp changed axis i
+};
+
+RespinLawOut rsp_law_tick(const RespinTable &t, const RespinLawState &s, const V3 &g, const V3 &h_nms);
+
+// The wheel distribution of §4 alone (per-axis clip to M_max, clamp to [(H - h_lim)/Ts,
+// (H + h_lim)/Ts], final clip); flags per axis.
+V3 rsp_distribute(const RespinTable &t, const V3 &mcmd_nm, const V3 &h_nms, std::array<bool, 3> *clip,
+                  std::array<bool, 3> *hbound);
+
+// ------------------------------------------------------------------------------------------------
+// The module: RespinRef, the double twin of rsp_init / rsp_step.
+
+struct RespinRefIn {
+    std::array<std::int32_t, 3> gyro_cnt{{0, 0, 0}};   // 2^-22 rad/s
+    std::array<std::int32_t, 3> whl_cnt{{0, 0, 0}};    // 2^-10 rad/s
+    std::uint32_t valid = 0x3Fu;                       // bits 0..2 gyro, 3..5 wheel (as rsp_in_t)
+    std::uint32_t sat = 0u;                            // same bits: at full scale
+};
+
+struct RespinRefOut {
+    std::uint32_t phase = RSP_PH_G0;       // RSP_PH_G0, RSP_PH_LOW, RSP_PH_RUN
+    std::uint32_t region = RSP_RG_FAR;
+    std::int32_t a_f = 1;
+    bool latched = false;
+    bool guard = false;
+    bool valid = false;                    // this tick's inputs were accepted
+    bool done = false;                     // RESPIN_DONE (§3.7)
+    std::uint32_t health = 0u;             // RSP_H_* bits this tick (the reference's subset)
+    V3 g{{0.0, 0.0, 0.0}};
+    double xi_abs = 0.0, cphi = 0.0;
+    V3 e_xi{{0.0, 0.0, 0.0}};
+    V3 mcmd_nm{{0.0, 0.0, 0.0}};
+    V3 mdel_nm{{0.0, 0.0, 0.0}};
+    V3 whl_torque_nm{{0.0, 0.0, 0.0}};     // = -mdel (zero on G0 / LOW / invalid ticks)
+    V3 h_nms{{0.0, 0.0, 0.0}};             // wheel momentum used
+    double g0_nms = 0.0;                   // 0 until frozen
+    double rho = 0.0;                      // |G| r0 - 1
+    double t_j = 0.0, w_j = 0.0, re_j = 0.0;
+    std::uint32_t done_run = 0u;
+    std::uint32_t n_switch = 0u;
+};
+
+class RespinRef {
+public:
+    RespinRef() = default;
+    explicit RespinRef(const RespinTable &t) { reset(t); }
+    void reset(const RespinTable &t);
+    RespinRefOut step(const RespinRefIn &in);
+
+    const RespinTable &table() const { return t_; }
+    const RespinLawState &law_state() const { return law_; }
+    double g0_nms() const { return g0_nms_; }
+    std::uint32_t n_switch() const { return n_switch_; }
+    std::uint64_t n_invalid() const { return n_invalid_; }
+
+private:
+    RespinTable t_;
+    std::uint32_t phase_ = RSP_PH_G0;
+    RespinLawState law_;
+    std::uint32_t n_acc_ = 0u;
+    double g0_sum_nms_ = 0.0, g0_nms_ = 0.0, r0_pnms_ = 0.0;
+    bool have_prev_ = false, have_t0_ = false;
+    V3 omega_prev_radps_{{0.0, 0.0, 0.0}}, h_prev_nms_{{0.0, 0.0, 0.0}};
+    V3 h_last_nms_{{0.0, 0.0, 0.0}}, mdel_last_nm_{{0.0, 0.0, 0.0}};
+    std::array<std::uint32_t, 3> whl_miss_{{0u, 0u, 0u}};
+    double t0_j_ = 0.0, w_j_ = 0.0;
+    std::uint32_t done_run_ = 0u, n_switch_ = 0u;
+    std::uint64_t n_invalid_ = 0u;
+};
+
+// Wheel torque N m -> command counts as the flight rounds it (half away from zero, int16 range).
+std::int32_t torque_counts(double torque_nm);
+
+// ------------------------------------------------------------------------------------------------
+// Rigid gyrostat with three wheels (spec 30 §2): dG/dt = -omega x G, omega = J^-1 (G - H),
+// dH_i/dt = applied wheel torque (motor command saturated at M_max, cut at the momentum limit
+// where it would increase |H_i|, plus bearing friction). Integrated by RK4 with n_sub steps per
+// tick; q_BI (Hamilton, scalar first, v_I = q v_B q*) follows dq/dt = 1/2 q (0, omega).
+
+struct GyrostatModel {
+    V3 j_kgm2{{2900.0, 3600.0, 670.0}};
+    double iw_kgm2 = 0.01;
+    double torque_max_nm = 0.15;     // motor limit
+    double h_max_nms = 5.0;          // hard momentum limit (500 rad/s)
+    double coulomb_nm = 0.0;         // bearing friction: -coulomb sgn(Omega) - viscous Omega on the wheel
+    double viscous_nmps = 0.0;       // N m per rad/s of wheel speed
+};
+
+struct GyrostatState {
+    V3 g_nms{{0.0, 0.0, 300.0}};     // total momentum, body frame
+    V3 h_nms{{0.0, 0.0, 0.0}};       // wheel momenta (about the wheel axes = body axes)
+    std::array<double, 4> q_bi{{1.0, 0.0, 0.0, 0.0}};
+    double g0_nms = 300.0;           // |G| the integrator re-projects onto
+    double t0_j = 0.0;               // T at t = 0
+    double work_j = 0.0;             // integral of omega^T M dt (M = -dH/dt, the moment on the body)
+};
+
+GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g0_nms);
+V3 gyrostat_omega(const GyrostatModel &m, const GyrostatState &s);
+double gyrostat_energy_j(const GyrostatModel &m, const GyrostatState &s);   // T = 1/2 omega^T J omega
+V3 gyrostat_g_inertial(const GyrostatState &s);                               // R_IB G
+
+struct GyrostatTick {
+    V3 torque_nm{{0.0, 0.0, 0.0}};          // motor torque after the motor limit
+    std::array<bool, 3> motor_clip{{false, false, false}};
+    std::array<bool, 3> hlim_cut{{false, false, false}};   // the momentum limit cut torque this tick
+};
+
+// One tick with the motor torque command held (ZOH) over dt_s, n_sub RK4 steps.
+GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &torque_cmd_nm, double dt_s, int n_sub);
+
+// ------------------------------------------------------------------------------------------------
+// Linearisation of the LIN law (spec 30 §3.3 item 2, §6): the 6x6 Jacobian in x = (G, H) at
+// g = e_y, H = 0 with D = I, H_f = 0. Row and column G_y (the |G| direction: its row and column
+// are zero, eigenvalue 0) are removed; the eigenvalues of the remaining 5x5 matrix.
+
+struct LinResult {
+    std::array<double, 36> a{};                 // the 6x6 Jacobian, row-major
+    std::vector<double> eig_re, eig_im;         // eigenvalues of the 5x5 reduction
+    double slowest_re = 0.0;                    // largest real part among the non-zero eigenvalues
+};
+
+// xi_sign = +1: the law M = -m [xi - k (H - H_f)]; -1: the xi term's sign flipped.
+LinResult linearise_lin(const V3 &j_kgm2, double g0_nms, double m_nm, double k_pnms, double xi_sign);
 
 }  // namespace ref
 

@@ -1,15 +1,21 @@
-// RESPIN in closed loop (SIL): plant node <-> LCM (memq) <-> bridge <-> fsw_step, the
-// in-process lock-step driver of hil_host/sil, and the same run with the double reference in
-// place of the flight code (`--fsw ref`).
+// RESPIN in closed loop (SIL): plant node <-> LCM (memq) <-> bridge <-> fsw_step, the in-process
+// lock-step driver of hil_host/sil, and the same runs with the double reference in place of the
+// flight code (`--fsw ref`, sim/respin/rsp_ref).
 //
-// Bounds, derived from the default table and the nominal scenario (J = 10 kg m^2, 0.2 rad/s):
-// the law saturates at 0.05 N m until |omega| = u_max / K = 0.1 rad/s (20 s at 0.005 rad/s^2),
-// then decays with tau = J / K = 20 s: below 1e-3 rad/s after 20 + 20 ln(100) = 112 s. The
-// bound 130 s leaves 18 s for the gyro noise (1e-5 rad/s) and quantisation; the final rate
-// lies far below 1e-3 rad/s after 300 s. Fixed point vs reference: the commands differ by at
-// most 1/2 LSB per step (test_rsp_ref_host.cpp), so t_settle within 2 periods and the
-// final rates within 1e-5 rad/s. A NaN window of 1 s on the gyro: 10 refused samples,
-// MEAS_SKIP, zero torque, never SAFE (stale_max is 250 steps).
+// Bounds (spec 30 §6, §7):
+// * First 600 s of the nominal case (respin_short): fixed point vs reference, |dH_i| <= 0.02 N m s
+//   and angle(g_fx, g_ref) <= 1e-3 rad at every truth sample (spec 30 §6; later only metrics are
+//   compared because the far relay amplifies tie decisions). Both stay in FAR (the far phase lasts
+//   ~5 800 s) and never command beyond M_max = 0.15 N m: 0.15 * 2^17 = 19 660.8 -> 19 661 counts
+//   = 0.1500015 N m; the plant's momentum limit 5 N m s holds with the clamp at 4.98.
+// * A2 in full (respin_nominal, 12 000 s, §2 sensors): converged by 8 000 s (reference 6 785 s),
+//   |omega - omega_f f| < 1e-4 rad/s and |H| < 0.05 N m s at the end, peak |H_i| <= 5, T_end within
+//   0.05 J of g0^2 / (2 J_y) = 12.50 J, plant energy check <= 0.1 J, flight |r_E| <= 0.5 J, no OVERFLOW.
+// * A3 (respin_printed): the printed law ends near -f: C_phi < -0.99, 0.01 < |xi| < 0.15.
+// * A12 (part): a 10 s gyro dropout at 300 s (in FAR): 100 invalid ticks counted as GYRO_BAD on
+//   the first affected tick, INPUT_FAULT latched after n_fault = 50, zero command meanwhile, never
+//   SAFE; region and a_f kept; the 600 s run ends in FAR with the law flying again.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,53 +37,110 @@ sil::InprocResult fly(const sim::Scenario &s, const std::string &fsw)
 
 const host::RespinMetrics &mm(const sil::InprocResult &r) { return r.metrics<host::RespinMetrics>(); }
 
+constexpr double kCmdMaxNm = 19661.0 / 131072.0;
+
+void common_checks(const sil::InprocResult &r, std::int64_t steps)
+{
+    EXPECT_TRUE(!r.plant.diverged && r.plant.deterministic());
+    EXPECT_EQ_INT(r.plant.steps, steps);
+    EXPECT_LE(mm(r).cmd_peak_nm, kCmdMaxNm + 1e-12);
+    EXPECT_LE(mm(r).h_axis_peak_nms, 5.0 + 1e-9);
+    EXPECT_LE(mm(r).g_rel_err_max, 1e-9);
+    EXPECT_LE(mm(r).e_check_max_j, 0.1);
+    EXPECT_EQ_INT(r.summary.number("fsw_n_safe"), 0);
+}
+
 }  // namespace
 
-SIM_TEST(nominal_settles_like_the_reference)
+SIM_TEST(first_600_s_fixed_tracks_the_reference)
+{
+    const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_short.yaml");
+    const sil::InprocResult fx = fly(s, "fixed");
+    const sil::InprocResult rf = fly(s, "ref");
+    const auto &a = mm(fx).early, &b = mm(rf).early;
+    double dh = 0.0, ang = 0.0;
+    EXPECT_EQ_INT(static_cast<long long>(a.size()), static_cast<long long>(b.size()));
+    for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+        double c = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            dh = std::max(dh, std::fabs(a[k].h_nms[i] - b[k].h_nms[i]));
+            c += a[k].g_unit[i] * b[k].g_unit[i];
+        }
+        ang = std::max(ang, std::acos(std::min(1.0, c)));
+    }
+    std::printf("600 s: max |dH_i| %.3e N m s, max angle(g_fx, g_ref) %.3e rad over %zu samples; fixed "
+                "switches %.0f, region %.0f, health OR 0x%08X\n",
+                dh, ang, a.size(), fx.summary.number("fsw_rsp_n_switch"), fx.summary.number("fsw_rsp_region"),
+                mm(fx).health_or);
+    EXPECT_TRUE(a.size() >= 6000u);
+    EXPECT_LE(dh, 0.02);
+    EXPECT_LE(ang, 1e-3);
+    common_checks(fx, 6000);
+    common_checks(rf, 6000);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_region"), RSP_RG_FAR);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_overflow"), 0);
+    EXPECT_EQ_INT(fx.summary.number("t_first_fx_status_s"), -1);
+    EXPECT_TRUE((mm(fx).health_or & RSP_H_G0_WAIT) != 0u);
+    EXPECT_TRUE((mm(fx).health_or & RSP_H_OVERFLOW) == 0u);
+}
+
+SIM_TEST(a2_nominal_wheels_converge)
 {
     const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_nominal.yaml");
     const sil::InprocResult fx = fly(s, "fixed");
-    const sil::InprocResult rf = fly(s, "ref");
-    std::printf("fixed: t_settle %.2f s, final |w| %.3g rad/s, peak torque %.5f N m, health OR 0x%08X\n",
-                mm(fx).t_settle_s, mm(fx).rate_final_radps, mm(fx).peak_torque_nm, mm(fx).health_or);
-    std::printf("ref:   t_settle %.2f s, final |w| %.3g rad/s, peak torque %.5f N m\n", mm(rf).t_settle_s,
-                mm(rf).rate_final_radps, mm(rf).peak_torque_nm);
-    for (const sil::InprocResult *r : {&fx, &rf}) {
-        EXPECT_TRUE(!r->plant.diverged && r->plant.deterministic());
-        EXPECT_EQ_INT(r->plant.steps, 3000);
-        EXPECT_LE(mm(*r).t_settle_s, 130.0);
-        EXPECT_LE(mm(*r).rate_final_radps, 1e-4);
-        EXPECT_NEAR(mm(*r).peak_torque_nm, 3277.0 / 65536.0, 1e-12);   // at the limit while saturated
-    }
-    EXPECT_NEAR(mm(fx).t_settle_s, mm(rf).t_settle_s, 2.0 * s.h_s() + 1e-9);
-    EXPECT_NEAR(mm(fx).rate_final_radps, mm(rf).rate_final_radps, 1e-5);
-    EXPECT_TRUE((mm(fx).health_or & RSP_H_CMD_LIMITED) != 0u);
-    EXPECT_TRUE((mm(fx).health_or & RSP_H_CMD_LIMIT_PERSIST) == 0u);   // 20 s < 60 s
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_tbl_rej"), 0);
-    EXPECT_EQ_INT(fx.summary.number("t_first_fx_status_s"), -1);
+    const host::RespinMetrics &m = mm(fx);
+    std::printf("A2 fixed: first |xi|<0.01 %.1f s, settled %.1f s, done %.1f s, a_f %+lld, |w - w_f f| %.3e, "
+                "|H| %.3e, T_end %.5f J, e_check %.3e J, |r_E| max %.4f J, peak |H| %.3f, switches %.0f, %.2f s wall\n",
+                m.t_first_xi_s, m.t_settle_s, m.t_done_s, static_cast<long long>(m.a_f_final), m.w_err_final_radps,
+                m.h_final_nms, m.t_end_j, m.e_check_max_j, m.re_abs_max_j, m.h_peak_nms,
+                fx.summary.number("fsw_rsp_n_switch"), fx.wall_s);
+    common_checks(fx, 120000);
+    EXPECT_TRUE(m.t_settle_s >= 0.0 && m.t_settle_s <= 8000.0);
+    EXPECT_LE(m.w_err_final_radps, 1e-4);
+    EXPECT_LE(m.h_final_nms, 0.05);
+    EXPECT_NEAR(m.t_end_j, 300.0 * 300.0 / (2.0 * 3600.0), 0.05);
+    EXPECT_LE(m.re_abs_max_j, 0.5);
+    EXPECT_TRUE(m.t_done_s > m.t_first_xi_s);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_overflow"), 0);
 }
 
-SIM_TEST(gyro_nan_window_is_refused_and_flown_through)
+SIM_TEST(a3_printed_law_ends_near_minus_f)
 {
-    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_nominal.yaml");
-    s.faults.nan_s = {{50.0, 51.0}};
+    const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_printed.yaml");
+    const sil::InprocResult fx = fly(s, "fixed");
+    const host::RespinMetrics &m = mm(fx);
+    std::printf("A3 fixed: C_phi %.4f, |xi| %.4f, switches %.0f, mode %.0f\n", m.cphi_final, m.xi_final,
+                fx.summary.number("fsw_rsp_n_switch"), fx.summary.number("fsw_rsp_mode"));
+    common_checks(fx, 120000);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_mode"), RSP_MODE_PRINTED);
+    EXPECT_LE(m.cphi_final, -0.99);
+    EXPECT_TRUE(m.xi_final > 0.01 && m.xi_final < 0.15);
+    EXPECT_TRUE(m.t_settle_s < 0.0);
+}
+
+SIM_TEST(a12_gyro_dropout_in_far_is_flown_through)
+{
+    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_short.yaml");
+    s.faults.nan_s = {{300.0, 310.0}};
     s.faults.nan_channel = 0u;
     const sil::InprocResult fx = fly(s, "fixed");
-    std::printf("NaN window: plant nan frames %llu, fsw n_chan_rej %.0f, n_skip %.0f\n",
+    std::printf("gyro dropout: plant nan frames %llu, fsw n_chan_rej %.0f, gyro_bad %.0f, region %.0f\n",
                 static_cast<unsigned long long>(fx.plant.nan_frames), fx.summary.number("fsw_n_chan_rej"),
-                fx.summary.number("fsw_rsp_n_skip"));
-    EXPECT_EQ_INT(fx.plant.nan_frames, 10);
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_chan_rej"), 10);
-    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_skip"), 10);
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
-    EXPECT_TRUE((mm(fx).health_or & RSP_H_MEAS_SKIP) != 0u);
-    EXPECT_LE(mm(fx).rate_final_radps, 1e-4);
+                fx.summary.number("fsw_rsp_n_gyro_bad"), fx.summary.number("fsw_rsp_region"));
+    common_checks(fx, 6000);
+    EXPECT_EQ_INT(fx.plant.nan_frames, 100);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_gyro_bad"), 100);
+    EXPECT_TRUE((mm(fx).health_or & RSP_H_GYRO_BAD) != 0u);
+    EXPECT_TRUE((mm(fx).health_or & RSP_H_INPUT_FAULT) != 0u);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_region"), RSP_RG_FAR);
+    EXPECT_TRUE(mm(fx).cmd_peak_nm > 0.1);
 }
 
 int main()
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(nominal_settles_like_the_reference),
-                                       cmocka_unit_test(gyro_nan_window_is_refused_and_flown_through)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(first_600_s_fixed_tracks_the_reference),
+                                       cmocka_unit_test(a2_nominal_wheels_converge),
+                                       cmocka_unit_test(a3_printed_law_ends_near_minus_f),
+                                       cmocka_unit_test(a12_gyro_dropout_in_far_is_flown_through)};
     return cmocka_run_group_tests_name("rsp_sil", tests, nullptr, nullptr);
 }

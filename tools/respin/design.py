@@ -1,47 +1,99 @@
-"""The respin table from physical design values: the one place its integers are derived.
+"""The respin tables from physical design values (spec 30 §2, §3.4, §4, §8): the one place their
+integers are derived.
 
-    K = J / tau          rate-damping gain [N m s]: the closed loop omega' = -omega / tau
-    gain_q16 = K * 2^12  torque counts (2^-16 N m) per rate count (2^-20 rad/s), q16:
-                         u = K omega / 2^-16 = K rate 2^-20 / 2^-16 = (K 2^12) rate / 2^16
-    u_max_cnt = torque_max / 2^-16, rate_max_cnt = rate full scale / 2^-20,
-    n_sat = sat_persist_s / period_s
+    python -m tools.respin ctable [--check]   rewrites fsw/respin/rsp_tables.[ch] from TABLES
 
-Change DESIGN (or add a table to TABLES) and run `python -m tools.respin ctable` to rewrite the
-C boot tables; CTest golden_rsp_tables_regen fails while they disagree.
+Formats are those of fsw/respin/rsp.h (J in 2^-19 kg m^2, momenta 2^-20 N m s, moments 2^-24 N m,
+unit vectors and thresholds Q1.30, 1/Ts Q16.16, energies 2^-32 J). CTest golden_rsp_tables_regen
+fails while the C tables and this file disagree.
 """
 import math
 
-RATE_LSB_RADPS = 2.0 ** -20      # sensor channel 0 (fsw/respin/rsp_iface.py)
-TORQUE_LSB_NM = 2.0 ** -16       # actuator channel 0
+GYRO_LSB_RADPS = 2.0 ** -22       # sensor channels 0..2 (fsw/respin/rsp_iface.py)
+WHEEL_LSB_RADPS = 2.0 ** -10      # sensor channels 3..5
+TORQUE_LSB_NM = 2.0 ** -17        # actuator channels 0..2
 
-DESIGN = dict(
-    period_s=0.1,                # 10 Hz
-    inertia_kgm2=10.0,           # single-axis inertia of the plant the table is designed for
-    tau_s=20.0,                  # closed-loop time constant
-    torque_max_nm=0.05,          # actuator authority
-    rate_full_scale_radps=0.5,   # gyro full scale
-    sat_persist_s=60.0,          # limiting this long raises CMD_LIMIT_PERSIST
+MODES = {"NEAREST": 0, "PRINTED": 1}
+ACTS = {"WHEELS": 0, "GYRODINES": 1}
+
+# Spec 30 §2 (plant) and §3.4 (law parameters), wheels.
+WHEELS = dict(
+    period_s=0.1,
+    mode="NEAREST", act="WHEELS",
+    j_kgm2=(2900.0, 3600.0, 670.0),   # principal axes, y the major axis
+    iw_kgm2=0.01,                     # wheel rotor inertia
+    eps1=0.1, eps2=0.5, h_eps=0.01,
+    mmax_nm=0.15,                     # wheel motor torque limit; m = M_max / eps1
+    k_per_nms=0.07,                   # maximises the slowest linearised decay rate for m = 1.5 (§3.4)
+    mstar_nm=0.15,                    # far law: anything larger is clipped
+    hmax_nms=5.0,                     # plant momentum limit per wheel
+    hlim_nms=4.98,                    # clamp: 0.02 left for quantisation and friction (§4)
+    gmin_nms=2.0,                     # low momentum (§3.6)
+    g0_s=5.0,                         # g0 averaged over the first 5 s (N_g0 = 50 at 0.1 s)
+    gyro_full_scale_radps=1.0, wheel_full_scale_radps=600.0,
+    fault_s=5.0, stale_ticks=20, wheel_est_ticks=10,
+    outlier_nms=0.5, outlier_rel=0.05,
+    drift=0.02, drift_tau_s=100.0,
+    energy_alarm_j=0.5,
+    done_xi=0.01, done_h_nms=0.05, done_s=300.0,
 )
 
+
+def design(**over):
+    d = dict(WHEELS)
+    d.update(over)
+    return d
+
+
 # (name in scenarios and tools, C symbol, design)
-TABLES = [("rsp_default", "RSP_TBL_DEFAULT", DESIGN)]
+TABLES = [
+    ("rsp_default", "RSP_TBL_DEFAULT", design()),                    # NEAREST (flight default)
+    ("rsp_printed", "RSP_TBL_PRINTED", design(mode="PRINTED")),      # the printed law (A3 only)
+    ("rsp_ts05", "RSP_TBL_TS05", design(period_s=0.5, g0_s=25.0)),   # A6: Ts = 0.5 s
+]
 
 
 def rnd(v):
-    """Round half away from zero (as the flight code's fx rounding)."""
+    """Round half away from zero (the flight code's fx rounding)."""
     return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
 
 
 def params(d):
     """Raw integer table fields (rsp_params_t names, revision excluded) of design d."""
-    k = d["inertia_kgm2"] / d["tau_s"]
+    ts = d["period_s"]
+    h_cap = math.sqrt(3.0) * d["hmax_nms"]
     return {
-        "period_us": rnd(d["period_s"] * 1e6),
-        "rate_max_cnt": rnd(d["rate_full_scale_radps"] / RATE_LSB_RADPS),
-        "gain_q16": rnd(k * TORQUE_LSB_NM ** -1 * RATE_LSB_RADPS * 65536.0),
-        "u_max_cnt": rnd(d["torque_max_nm"] / TORQUE_LSB_NM),
-        "n_sat": rnd(d["sat_persist_s"] / d["period_s"]),
-        "spare": 0,
+        "period_us": rnd(ts * 1e6),
+        "mode": MODES[d["mode"]],
+        "act_kind": ACTS[d["act"]],
+        "j_q19": [rnd(j * 2 ** 19) for j in d["j_kgm2"]],
+        "iw_q30": rnd(d["iw_kgm2"] * 2 ** 30),
+        "eps1_q30": rnd(d["eps1"] * 2 ** 30),
+        "eps2_q30": rnd(d["eps2"] * 2 ** 30),
+        "heps_q30": rnd(d["h_eps"] * 2 ** 30),
+        "m_q24": rnd(d["mmax_nm"] / d["eps1"] * 2 ** 24),
+        "k_q30": rnd(d["k_per_nms"] * 2 ** 30),
+        "mstar_q24": rnd(d["mstar_nm"] * 2 ** 24),
+        "mmax_q24": rnd(d["mmax_nm"] * 2 ** 24),
+        "hlim_q20": rnd(d["hlim_nms"] * 2 ** 20),
+        "inv_ts_q16": rnd(2 ** 16 / ts),
+        "gguard_q20": rnd(2.0 * h_cap * 2 ** 20),     # g_guard = 2 H_cap, not 2 h_max (§3.6)
+        "gmin_q20": rnd(d["gmin_nms"] * 2 ** 20),
+        "n_g0": rnd(d["g0_s"] / ts),
+        "gyro_max_cnt": rnd(d["gyro_full_scale_radps"] / GYRO_LSB_RADPS),
+        "whl_max_cnt": rnd(d["wheel_full_scale_radps"] / WHEEL_LSB_RADPS),
+        "n_fault": rnd(d["fault_s"] / ts),
+        "n_stale": d["stale_ticks"],
+        "n_whl_est": d["wheel_est_ticks"],
+        "outlier_q20": rnd(d["outlier_nms"] * 2 ** 20),
+        "outlier_rel_q16": rnd(d["outlier_rel"] * 2 ** 16),
+        "drift_q30": rnd(d["drift"] * 2 ** 30),
+        # rho_lp += (rho - rho_lp) 2^-sh: time constant Ts 2^sh, the nearest power of two to 100 s
+        "drift_sh": rnd(math.log2(d["drift_tau_s"] / ts)),
+        "ealarm_q32": rnd(d["energy_alarm_j"] * 2 ** 32),
+        "done_xi_q30": rnd(d["done_xi"] * 2 ** 30),
+        "done_h_q20": rnd(d["done_h_nms"] * 2 ** 20),
+        "done_ticks": rnd(d["done_s"] / ts),
     }
 
 

@@ -13,12 +13,24 @@ from tools.table import image_writer
 from . import design
 
 I32MAX = 2 ** 31 - 1
+U32MAX = 2 ** 32 - 1
+Q30 = 1 << 30
 # (field, struct code, count, lo, hi) in wire order, with the flight loader's limits (RSP_LIMS)
-PAYLOAD = [("period_us", "I", 1, 1000, 1000000), ("rate_max_cnt", "i", 1, 1, I32MAX),
-           ("gain_q16", "i", 1, 1, 1 << 24), ("u_max_cnt", "i", 1, 1, 1 << 24), ("n_sat", "H", 1, 1, 65535),
-           ("spare", "H", 1, 0, 0)]
+PAYLOAD = [("period_us", "I", 1, 1000, 1000000), ("mode", "I", 1, 0, 1), ("act_kind", "I", 1, 0, 1),
+           ("j_q19", "i", 3, 1, I32MAX), ("iw_q30", "i", 1, 1, I32MAX), ("eps1_q30", "i", 1, 1, Q30),
+           ("eps2_q30", "i", 1, 1, Q30), ("heps_q30", "i", 1, 1, Q30), ("m_q24", "i", 1, 1, I32MAX),
+           ("k_q30", "i", 1, 1, I32MAX), ("mstar_q24", "i", 1, 1, I32MAX), ("mmax_q24", "i", 1, 1, I32MAX),
+           ("hlim_q20", "i", 1, 1, I32MAX), ("inv_ts_q16", "i", 1, 1, I32MAX), ("gguard_q20", "i", 1, 1, I32MAX),
+           ("gmin_q20", "i", 1, 1, I32MAX), ("n_g0", "I", 1, 1, 1024), ("gyro_max_cnt", "i", 1, 1, 1 << 22),
+           ("whl_max_cnt", "i", 1, 1, I32MAX), ("n_fault", "I", 1, 1, 65535), ("n_stale", "I", 1, 1, 65535),
+           ("n_whl_est", "I", 1, 1, 65535), ("outlier_q20", "i", 1, 1, I32MAX),
+           ("outlier_rel_q16", "I", 1, 1, 65536), ("drift_q30", "i", 1, 1, Q30), ("drift_sh", "I", 1, 1, 20),
+           ("ealarm_q32", "I", 1, 1, U32MAX), ("done_xi_q30", "i", 1, 1, Q30), ("done_h_q20", "i", 1, 1, I32MAX),
+           ("done_ticks", "I", 1, 1, 1 << 24)]
+# value[a] + margin <= value[b] (RSP_RELS)
+RELS = [("eps1_q30", "eps2_q30", 1), ("gmin_q20", "gguard_q20", 0)]
 _MOD = iface.mission("RESPIN").iface
-LAYOUT = image_writer.Layout(_MOD.table_id, _MOD.table_layout, PAYLOAD, 20, (), "fsw/respin/rsp_table.c")
+LAYOUT = image_writer.Layout(_MOD.table_id, _MOD.table_layout, PAYLOAD, 128, RELS, "fsw/respin/rsp_table.c")
 NAMES = [n for n, _, _ in design.TABLES]
 
 

@@ -6,15 +6,15 @@ namespace host {
 
 namespace {
 
-std::int32_t to_cnt(double v, double lsb)
+std::uint32_t sat_u32(std::int32_t v) { return (v < 0) ? 0u : static_cast<std::uint32_t>(v); }
+
+std::int32_t q_cnt(double v, double scale)
 {
-    const double s = std::round(v / lsb);
+    const double s = std::round(v * scale);
     if (!(s > -2147483648.0)) { return INT32_MIN; }   // also NaN
     if (s > 2147483647.0) { return INT32_MAX; }
     return static_cast<std::int32_t>(s);
 }
-
-std::uint32_t sat_u32(std::int32_t v) { return (v < 0) ? 0u : static_cast<std::uint32_t>(v); }
 
 }  // namespace
 
@@ -24,14 +24,14 @@ RefRespinBackend::RefRespinBackend(const rsp_params_t &table)
     rsp_mis_t b{};
     b.p = table;
     b.have_p = true;
-    rsp_mis_ranges(&b, &rng_);   // the flight adapter's channel map
+    rsp_mis_ranges(&b, rng_);   // the flight adapter's channel map
     (void)reset();
 }
 
 bool RefRespinBackend::reset()
 {
     step_ = 0;
-    limited_run_ = 0;
+    law_.reset(t_);
     *tlm_ = fsw_tlm_t{};
     tlm_->mission = FSW_MISSION_RESPIN;
     return true;
@@ -49,25 +49,46 @@ bool RefRespinBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
     ++step_;
     fsw_tlm_t &t = *tlm_;
     rsp_tlm_t &m = t.m.respin;
-    const bool valid = f.n_counts >= 1 && (f.status[0] & (bridge::kStatusStale | bridge::kStatusSat)) == 0 &&
-                       f.counts[0] >= rng_.min && f.counts[0] <= rng_.max;
-    std::uint32_t h = 0u;
-    std::int32_t u = 0;
-    if (valid) {
-        const ref::RespinOut o = ref::rsp_law(t_, static_cast<double>(f.counts[0]) * sim::kRespinRateLsbRadps);
-        u = to_cnt(o.tau_nm, sim::kRespinTorqueLsbNm);
-        limited_run_ = o.limited ? limited_run_ + 1u : 0u;
-        if (o.limited) { h |= RSP_H_CMD_LIMITED; ++m.n_limited; }
-        m.rate_cnt = f.counts[0];
-    } else {
-        h |= RSP_H_MEAS_SKIP;
-        ++m.n_skip;
-        limited_run_ = 0u;
-        m.rate_cnt = 0;
+    ref::RespinRefIn in;
+    in.valid = 0u;
+    in.sat = 0u;
+    for (std::uint32_t i = 0; i < RSP_N_SENS; ++i) {
+        const std::int32_t c = (static_cast<int>(i) < f.n_counts) ? f.counts[i] : 0;
+        const bool ok = static_cast<int>(i) < f.n_counts && (f.status[i] & bridge::kStatusStale) == 0 &&
+                        c >= rng_[i].min && c <= rng_[i].max;
+        if (ok) { in.valid |= 1u << i; }
+        if ((f.status[i] & bridge::kStatusSat) != 0) { in.sat |= 1u << i; }
+        if (i < 3u) { in.gyro_cnt[i] = c; } else { in.whl_cnt[i - 3u] = c; }
     }
-    if (limited_run_ >= p_.n_sat) { h |= RSP_H_CMD_LIMIT_PERSIST; }
-    m.u_cnt = u;
-    m.health_sticky |= h;
+    const ref::RespinRefOut o = law_.step(in);
+    // Telemetry from the double state, rounded to the flight's formats (rsp.h).
+    m.phase = static_cast<std::uint8_t>(o.phase);
+    m.region = static_cast<std::uint8_t>(o.region);
+    m.latched = o.latched ? 1u : 0u;
+    m.mode = static_cast<std::uint8_t>(p_.mode);
+    m.a_f = o.a_f;
+    m.flags = o.health;
+    m.xi_abs_q30 = q_cnt(o.xi_abs, 0x1p30);
+    m.cphi_q30 = q_cnt(o.cphi, 0x1p30);
+    m.g0_q20 = q_cnt(o.g0_nms, 0x1p20);
+    m.rho_q30 = q_cnt(o.rho, 0x1p30);
+    for (std::size_t i = 0; i < 3; ++i) {
+        m.g_q30[i] = q_cnt(o.g[i], 0x1p30);
+        m.mcmd_q24[i] = q_cnt(o.mcmd_nm[i], 0x1p24);
+        m.mdel_q24[i] = q_cnt(o.mdel_nm[i], 0x1p24);
+        m.h_q20[i] = q_cnt(o.h_nms[i], 0x1p20);
+    }
+    m.t_q32 = static_cast<std::int64_t>(std::llround(o.t_j * 0x1p32));
+    m.w_q32 = static_cast<std::int64_t>(std::llround(o.w_j * 0x1p32));
+    m.re_q32 = static_cast<std::int64_t>(std::llround(o.re_j * 0x1p32));
+    m.done_run = o.done_run;
+    m.n_switch = o.n_switch;
+    if (o.phase == RSP_PH_RUN && o.valid) {
+        std::uint32_t *per[3] = {&m.n_lin, &m.n_mid, &m.n_far};
+        ++*per[o.region < 3u ? o.region : 2u];
+    }
+    if (!o.valid) { ++m.n_gyro_bad; }
+    m.health_sticky |= o.health;
     m.revision = p_.revision;
     t.utime_us = f.utime;
     t.seq = f.seq;
@@ -75,10 +96,13 @@ bool RefRespinBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
     t.mode = FSW_MODE_RESPIN;
     t.host_missed = missed_;
     t.host_rejected = rejected_;
-    t.act_cnt[0] = u;
-    t.mod_health = h;
-    out.n_counts = 1;
-    out.counts[0] = u;
+    out.n_counts = static_cast<std::int32_t>(RSP_N_ACT);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const std::int32_t u = ref::torque_counts(o.whl_torque_nm[i]);
+        t.act_cnt[i] = u;
+        out.counts[i] = u;
+    }
+    t.mod_health = o.health;
     out.fsw_mode = static_cast<std::int32_t>(FSW_MODE_RESPIN);
     out.tlm_layout_version = static_cast<std::int32_t>(RSP_TLM_LAYOUT);
     out.tlm_len = static_cast<std::int16_t>(fsw_tlm_encode(&t, out.tlm, static_cast<std::uint32_t>(bridge::kMaxTlm)));

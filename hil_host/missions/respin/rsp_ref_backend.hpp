@@ -32,8 +32,9 @@ public:
 private:
     rsp_params_t p_;
     ref::RespinTable t_;
-    fsw_range_t rng_{};
-    std::uint32_t step_ = 0, limited_run_ = 0;
+    ref::RespinRef law_;
+    fsw_range_t rng_[RSP_N_SENS]{};
+    std::uint32_t step_ = 0;
     std::unique_ptr<fsw_tlm_t> tlm_;
     std::uint32_t missed_ = 0, rejected_ = 0;
 };
