@@ -39,7 +39,7 @@ class RespinSection final : public MissionSection {
 public:
     const char *mission() const override { return "RESPIN"; }
     std::vector<std::string> root_keys() const override { return {"respin"}; }
-    std::vector<std::string> tables() const override { return {"rsp_default", "rsp_printed", "rsp_ts05"}; }
+    std::vector<std::string> tables() const override { return {"rsp_default", "rsp_printed", "rsp_ts05", "rsp_noguard"}; }
 
     void defaults(Scenario &s) const override
     {
@@ -129,6 +129,7 @@ rsp_params_t respin_boot_table(const std::string &name)
     if (name == "rsp_default") { return RSP_TBL_DEFAULT; }
     if (name == "rsp_printed") { return RSP_TBL_PRINTED; }
     if (name == "rsp_ts05") { return RSP_TBL_TS05; }
+    if (name == "rsp_noguard") { return RSP_TBL_NOGUARD; }
     throw std::invalid_argument("unknown respin table '" + name + "'");
 }
 

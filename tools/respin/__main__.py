@@ -1,5 +1,5 @@
 """python -m tools.respin {ctable [--check] | image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE
-   | --all DIR)} (from the repo root)."""
+   | --all DIR) | stats STORE [--compare STORE]} (from the repo root)."""
 import argparse
 import sys
 
@@ -15,7 +15,13 @@ def main(argv=None):
     im.add_argument("-o", metavar="FILE", help="output image (with --table)")
     im.add_argument("--revision", type=int, default=1, help="header revision (default 1, as the boot tables)")
     im.add_argument("--set", action="append", metavar="FIELD=INT", help="override a raw field (repeatable)")
+    st = sub.add_parser("stats", help="spec 30 §7 figures of a campaign store (A4, A6, A7)")
+    st.add_argument("store", help="the campaign's --out directory")
+    st.add_argument("--compare", metavar="STORE", help="a second store; also the first restricted to its runs")
     a = ap.parse_args(argv)
+    if a.cmd == "stats":
+        from . import stats
+        return stats.main(a)
     if a.cmd == "ctable":
         from . import ctable
         return ctable.main(a.check)

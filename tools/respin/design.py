@@ -29,6 +29,7 @@ WHEELS = dict(
     hmax_nms=5.0,                     # plant momentum limit per wheel
     hlim_nms=4.98,                    # clamp: 0.02 left for quantisation and friction (§4)
     gmin_nms=2.0,                     # low momentum (§3.6)
+    guard_hcap=3.0,                   # small-|G| guard g_guard = guard_hcap H_cap (§3.6; see params)
     g0_s=5.0,                         # g0 averaged over the first 5 s (N_g0 = 50 at 0.1 s)
     gyro_full_scale_radps=1.0, wheel_full_scale_radps=600.0,
     fault_s=5.0, stale_ticks=20, wheel_est_ticks=10,
@@ -50,6 +51,7 @@ TABLES = [
     ("rsp_default", "RSP_TBL_DEFAULT", design()),                    # NEAREST (flight default)
     ("rsp_printed", "RSP_TBL_PRINTED", design(mode="PRINTED")),      # the printed law (A3 only)
     ("rsp_ts05", "RSP_TBL_TS05", design(period_s=0.5, g0_s=25.0)),   # A6: Ts = 0.5 s
+    ("rsp_noguard", "RSP_TBL_NOGUARD", design(guard=False)),         # A7 without the guard
 ]
 
 
@@ -77,7 +79,11 @@ def params(d):
         "mmax_q24": rnd(d["mmax_nm"] * 2 ** 24),
         "hlim_q20": rnd(d["hlim_nms"] * 2 ** 20),
         "inv_ts_q16": rnd(2 ** 16 / ts),
-        "gguard_q20": rnd(2.0 * h_cap * 2 ** 20),     # g_guard = 2 H_cap, not 2 h_max (§3.6)
+        # g_guard = 3 H_cap = 26.0 N m s, not the spec's 2 H_cap = 17.3 (§3.6): with 2 H_cap one A7 run
+        # (g0 = 18.6 N m s) stays in FAR for 20 000 s with the wheels at their bounds, in the fixed-point
+        # code and in the double reference alike (fsw/respin/README.md "A7"). "No guard" = g_guard at
+        # g_min (below it: LOW_MOMENTUM).
+        "gguard_q20": rnd((d["guard_hcap"] * h_cap if d.get("guard", True) else d["gmin_nms"]) * 2 ** 20),
         "gmin_q20": rnd(d["gmin_nms"] * 2 ** 20),
         "n_g0": rnd(d["g0_s"] / ts),
         "gyro_max_cnt": rnd(d["gyro_full_scale_radps"] / GYRO_LSB_RADPS),
