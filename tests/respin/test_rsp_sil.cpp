@@ -14,7 +14,8 @@
 // * A3 (respin_printed): the printed law ends near -f: C_phi < -0.99, 0.01 < |xi| < 0.15.
 // * A12 (part): a 10 s gyro dropout at 300 s (in FAR): 100 invalid ticks counted as GYRO_BAD on
 //   the first affected tick, INPUT_FAULT latched after n_fault = 50, zero command meanwhile, never
-//   SAFE; region and a_f kept; the 600 s run ends in FAR with the law flying again.
+//   SAFE; region and a_f kept; the 600 s run ends in FAR with the law flying again. A 10 s wheel
+//   dropout in MID: propagated, then invalid, and the respin still converges (its test's comment).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -136,11 +137,38 @@ SIM_TEST(a12_gyro_dropout_in_far_is_flown_through)
     EXPECT_TRUE(mm(fx).cmd_peak_nm > 0.1);
 }
 
+// A12 (part): a 10 s wheel-speed dropout (wheel x) in MID. In the nominal run the region is MID
+// without a break from 6 063.6 s to 6 220.6 s (telemetry of respin_nominal), so the window
+// 6 100-6 110 s lies inside it. The first n_whl_est = 10 missing samples are propagated from the
+// last command (WHL_EST), the remaining 90 make the tick invalid (WHL_BAD: zero command, state kept,
+// INPUT_FAULT after 50 in a row); the respin still converges by 8 000 s.
+SIM_TEST(a12_wheel_dropout_in_mid_still_converges)
+{
+    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_nominal.yaml");
+    s.faults.nan_s = {{6100.0, 6110.0}};
+    s.faults.nan_channel = 3u;
+    const sil::InprocResult fx = fly(s, "fixed");
+    const host::RespinMetrics &m = mm(fx);
+    std::printf("wheel dropout: nan frames %llu, whl_est %.0f, whl_bad %.0f, settled %.1f s, health OR 0x%08X\n",
+                static_cast<unsigned long long>(fx.plant.nan_frames), fx.summary.number("fsw_rsp_n_whl_est"),
+                fx.summary.number("fsw_rsp_n_whl_bad"), m.t_settle_s, m.health_or);
+    common_checks(fx, 120000);
+    EXPECT_EQ_INT(fx.plant.nan_frames, 100);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_whl_est"), 10);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_whl_bad"), 90);
+    EXPECT_TRUE((m.health_or & RSP_H_WHL_EST) != 0u && (m.health_or & RSP_H_WHL_BAD) != 0u);
+    EXPECT_TRUE((m.health_or & RSP_H_INPUT_FAULT) != 0u);
+    EXPECT_TRUE(m.t_settle_s >= 0.0 && m.t_settle_s <= 8000.0);
+    EXPECT_LE(m.w_err_final_radps, 1e-4);
+    EXPECT_LE(m.h_final_nms, 0.05);
+}
+
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(first_600_s_fixed_tracks_the_reference),
                                        cmocka_unit_test(a2_nominal_wheels_converge),
                                        cmocka_unit_test(a3_printed_law_ends_near_minus_f),
-                                       cmocka_unit_test(a12_gyro_dropout_in_far_is_flown_through)};
+                                       cmocka_unit_test(a12_gyro_dropout_in_far_is_flown_through),
+                                       cmocka_unit_test(a12_wheel_dropout_in_mid_still_converges)};
     return cmocka_run_group_tests_name("rsp_sil", tests, nullptr, nullptr);
 }
