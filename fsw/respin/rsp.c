@@ -25,6 +25,8 @@
 #define RSP_INV_TS_NUM   ((uint64_t)65536000000u)     /* 2^16 * 10^6: inv_ts_q16 = this / period_us */
 #define RSP_WHL_M_STALE  ((int32_t)167772)            /* 0.01 N m in 2^-24 N m (spec 30 §8) */
 #define RSP_Q24US_PER_Q20S ((uint64_t)16000000u)      /* 2^24 N m us -> 2^20 N m s: 2^4 * 10^6 */
+#define RSP_FOLLOW_Q24   ((int64_t)503316)            /* 0.03 N m in 2^-24 N m (spec 30 §8) */
+#define RSP_FOLLOW_S     ((int64_t)10)                /* ... for 10 s */
 
 /* Per-step scratch of the samples' derived values. g, |xi|, C_phi, M_cmd and M_del are formed
    straight in the telemetry block (the stack of rsp_step stays well under its 256 B budget). */
@@ -521,6 +523,32 @@ static void distribute(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
 /* T = 1/2 sum (J omega)_i omega_i; W -= 1/2 (omega_k + omega_k-1) . (H_k - H_k-1); r_E = T - T0 - W.
    A gap (invalid ticks) is not integrated across: its first valid tick re-bases W so that r_E
    carries on from its last value, because the work done over the unseen interval is unknown. */
+/* Wheel not following its command (spec 30 §8): the moment a wheel delivered over the last hold,
+   -dH/Ts from two consecutive measured momenta, against the moment commanded then. Off by more than
+   0.03 N m for 10 s latches WHEEL_FAULT (respin on two wheels is not validated: zero command from
+   then on). Only across consecutive valid ticks (have_prev): a propagated momentum (WHL_EST) equals
+   the command by construction and an invalid tick commanded zero. */
+static void wheel_follow(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
+{
+    /* 10 s in ticks: 10 inv_ts_q16 / 2^16, rounded (100 at Ts = 0.1 s) */
+    uint32_t n = (uint32_t)fx_shr_rnd64(RSP_FOLLOW_S * (int64_t)p->inv_ts_q16, 16u, &w->st);
+    uint32_t i;
+    for (i = 0u; i < RSP_N_AX; i++) {
+        /* |dH| < 2^32 times 1/Ts < 2^31: q36, one rounding to 2^-24 N m */
+        int64_t dh = (int64_t)w->h_q20[i] - (int64_t)s->h_prev_q20[i];
+        int64_t m_meas = fx_shr_rnd64(-dh * (int64_t)p->inv_ts_q16, 12u, &w->st);
+        int64_t d = m_meas - (int64_t)s->mdel_last_q24[i];
+        if ((d > RSP_FOLLOW_Q24) || (d < -RSP_FOLLOW_Q24)) {
+            fx_cnt_inc(&s->follow_run[i]);
+        } else {
+            s->follow_run[i] = 0u;
+        }
+        if (s->follow_run[i] >= n) {
+            s->wheel_fault = true;
+        }
+    }
+}
+
 static void energy(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
 {
     int64_t acc = 0;
@@ -603,6 +631,9 @@ static bool run_tick(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
         target_tick(s, p, w, guard);
         law(s, p, w);
         distribute(s, p, w);
+        if (s->have_prev) {
+            wheel_follow(s, p, w);
+        }
         energy(s, p, w);
         drift(s, p, w);
         done_tick(s, p, w);
@@ -648,11 +679,16 @@ static void finish(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w, rsp_out
     for (i = 0u; i < RSP_N_AX; i++) {
         cmd[i] = fx_sat16(fx_rshift_sat(-(int64_t)s->tlm.mdel_q24[i], 7u, &w->st), &w->st);
     }
-    if (w->st != 0u) {
+    if ((w->st != 0u) || s->wheel_fault) {
         for (i = 0u; i < RSP_N_AX; i++) {
             cmd[i] = 0;
             s->tlm.mdel_q24[i] = 0;
         }
+    }
+    if (s->wheel_fault) {
+        w->h |= RSP_H_WHEEL_FAULT;
+    }
+    if (w->st != 0u) {
         w->h |= RSP_H_OVERFLOW;
         fx_cnt_inc(&s->tlm.n_overflow);
     }

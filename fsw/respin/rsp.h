@@ -129,6 +129,8 @@ typedef struct {
     int64_t  t0_q32;           /* T at the first valid tick after g0 froze */
     bool     have_t0;
     bool     input_fault;      /* RSP_H_INPUT_FAULT latched (n_fault invalid ticks in a row) until rsp_init */
+    uint32_t follow_run[3];    /* valid ticks in a row with wheel i off its command (spec 30 §8) */
+    bool     wheel_fault;      /* RSP_H_WHEEL_FAULT latched until rsp_init: the command is zero */
     /* tlm also carries the law's running values that RESET_COUNTERS leaves alone and rsp.c reads
        back each tick: g0_q20, rho_lp_q30, w_q32, re_q32 (r_E carried over a gap), done_run. */
     rsp_tlm_t tlm;

@@ -22,6 +22,7 @@
 #define RSP_H_OVERFLOW               (0x00100000u)  /* an fx status this tick: zero command */
 #define RSP_H_DONE                   (0x00200000u)  /* |xi|, C_phi > 0 and |H - H_f| in tolerance for done_ticks */
 #define RSP_H_G0_WAIT                (0x00400000u)  /* g0 being averaged: zero command */
+#define RSP_H_WHEEL_FAULT            (0x00800000u)  /* a wheel off its command by > 0.03 N m for 10 s (latched): zero command */
 
 /* rsp_params_check reasons (bits of *why); a table veto's detail is 1 + the bit index. */
 #define RSP_WHY_PERIOD               (0x00000001u)  /* period (zero, or not the executive's) */

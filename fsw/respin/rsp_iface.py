@@ -73,6 +73,7 @@ MODULE = Module(
         Bit("OVERFLOW", 0x00100000, "an fx status this tick: zero command"),
         Bit("DONE", 0x00200000, "|xi|, C_phi > 0 and |H - H_f| in tolerance for done_ticks"),
         Bit("G0_WAIT", 0x00400000, "g0 being averaged: zero command"),
+        Bit("WHEEL_FAULT", 0x00800000, "a wheel off its command by > 0.03 N m for 10 s (latched): zero command"),
     ],
     why=[
         Bit("PERIOD", 0x001, "period (zero, or not the executive's)"),

@@ -8,7 +8,8 @@
  * entry; outside it the wheels hold zero torque. The module judges its inputs itself (spec 30 §8:
  * an invalid tick commands zero and keeps region, a_f and latch), so no channel condition sends
  * the executive to SAFE: a 10 s gyro dropout in FAR must not restart a respin hours into its far
- * phase (spec 30 §7 A12). INPUT_FAULT, ENERGY_ALARM, OVERFLOW and any fx status raise FSW_H_MODULE.
+ * phase (spec 30 §7 A12). INPUT_FAULT, WHEEL_FAULT, ENERGY_ALARM, OVERFLOW and any fx status raise
+ * FSW_H_MODULE.
  * Commit rule: a validated table becomes active at the next step boundary and the law's state
  * (g0, region, a_f, energy) is kept: every table field is a gain, a limit or a threshold read
  * afresh each tick, and g0 is a measurement, not a table value. Telecommand RESET_COUNTERS clears
@@ -16,7 +17,7 @@
  */
 #include "rsp_mission.h"
 
-#define RSP_FAULT_BITS (RSP_H_INPUT_FAULT | RSP_H_ENERGY_ALARM | RSP_H_OVERFLOW | FX_ST_MASK)
+#define RSP_FAULT_BITS (RSP_H_INPUT_FAULT | RSP_H_WHEEL_FAULT | RSP_H_ENERGY_ALARM | RSP_H_OVERFLOW | FX_ST_MASK)
 
 /* The generated total is the header, the actuator counts, the health word and the block. */
 FX_STATIC_ASSERT(rsp_mis_sa_tlm,

@@ -802,6 +802,36 @@ UT_TEST(wheel_stale_under_torque)
     check_kept();
 }
 
+/* WHEEL_FAULT (spec 30 §8): the far law at g = e_z commands M = -M* on every axis, so each wheel
+   should gain 0.015 N m s per tick; the wheel words only dither by one count (9.8e-6 N m s, so the
+   frozen-word test stays quiet), i.e. the wheels deliver |M| <= 1e-4 N m against 0.15 commanded:
+   0.15 > 0.03 N m. From the second law tick (the first with a previous sample) the miss counts;
+   10 s = 10 * 655360 / 2^16 = 100 ticks later the fault latches: command zero from that tick on,
+   FSW_H_MODULE through the adapter, until rsp_init. */
+UT_TEST(wheel_not_following_latches_wheel_fault)
+{
+    const rsp_params_t p = params();
+    rsp_out_t o;
+    uint32_t k;
+    prime(&p, 2u, 1602599, 12);
+    for (k = 1u; k <= 101u; k++) {
+        int32_t d = (int32_t)(k & 1u);
+        o = step6(&p, d, 0, 1602599, d, d, 12 + d);
+        if (k <= 100u) {
+            check_cmd(&o, OUT_MAX, OUT_MAX, OUT_MAX);
+            UT_UEQ(o.health & RSP_H_WHEEL_FAULT, 0u);
+        }
+    }
+    UT_TRUE(cmd_zero(&o));
+    UT_UEQ(o.health & RSP_H_WHEEL_FAULT, RSP_H_WHEEL_FAULT);
+    UT_UEQ(g_s.follow_run[0], 100u);
+    o = step6(&p, 0, 0, 1602599, 0, 0, 12);
+    UT_TRUE(cmd_zero(&o));
+    UT_UEQ(o.health & RSP_H_WHEEL_FAULT, RSP_H_WHEEL_FAULT);
+    rsp_init(&g_s, &p);
+    UT_TRUE(!g_s.wheel_fault);
+}
+
 UT_TEST(input_fault_latches_after_n_fault)
 {
     const rsp_params_t p = params();
@@ -975,6 +1005,7 @@ int main(void)
         UT_CASE(gyro_stale_after_n_stale_repeats),
         UT_CASE(wheel_missing_is_propagated_then_bad),
         UT_CASE(wheel_stale_under_torque),
+        UT_CASE(wheel_not_following_latches_wheel_fault),
         UT_CASE(input_fault_latches_after_n_fault),
         UT_CASE(fx_status_zeroes_the_command),
         UT_CASE(energy_bookkeeping),

@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <string>
 
+#include "respin/respin_section.hpp"
 #include "respin/rsp_metrics.hpp"
 #include "scenario/scenario.hpp"
 #include "sil_run.hpp"
@@ -99,6 +100,7 @@ SIM_TEST(a2_nominal_wheels_converge)
     EXPECT_TRUE(m.t_settle_s >= 0.0 && m.t_settle_s <= 8000.0);
     EXPECT_LE(m.w_err_final_radps, 1e-4);
     EXPECT_LE(m.h_final_nms, 0.05);
+    EXPECT_TRUE((m.health_or & RSP_H_WHEEL_FAULT) == 0u);
     EXPECT_NEAR(m.t_end_j, 300.0 * 300.0 / (2.0 * 3600.0), 0.05);
     EXPECT_LE(m.re_abs_max_j, 0.5);
     EXPECT_TRUE(m.t_done_s > m.t_first_xi_s);
@@ -163,12 +165,28 @@ SIM_TEST(a12_wheel_dropout_in_mid_still_converges)
     EXPECT_LE(m.h_final_nms, 0.05);
 }
 
+// Spec 30 §8 "wheel not following command": 0.05 N m of Coulomb friction on the wheels (plant fault)
+// makes every spinning wheel deliver 0.05 N m less than commanded (> 0.03 N m): after 10 s of it
+// WHEEL_FAULT latches and the module commands zero (respin on degraded wheels is not validated);
+// never SAFE, no fx status. Without friction (the other runs) the bit never rises.
+SIM_TEST(wheel_friction_latches_wheel_fault)
+{
+    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_short.yaml");
+    s.mission_part<sim::RespinScenario>().body.coulomb_nm = 0.05;
+    const sil::InprocResult fx = fly(s, "fixed");
+    std::printf("wheel friction: health OR 0x%08X\n", mm(fx).health_or);
+    common_checks(fx, 6000);
+    EXPECT_TRUE((mm(fx).health_or & RSP_H_WHEEL_FAULT) != 0u);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_overflow"), 0);
+}
+
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(first_600_s_fixed_tracks_the_reference),
                                        cmocka_unit_test(a2_nominal_wheels_converge),
                                        cmocka_unit_test(a3_printed_law_ends_near_minus_f),
                                        cmocka_unit_test(a12_gyro_dropout_in_far_is_flown_through),
-                                       cmocka_unit_test(a12_wheel_dropout_in_mid_still_converges)};
+                                       cmocka_unit_test(a12_wheel_dropout_in_mid_still_converges),
+                                       cmocka_unit_test(wheel_friction_latches_wheel_fault)};
     return cmocka_run_group_tests_name("rsp_sil", tests, nullptr, nullptr);
 }
