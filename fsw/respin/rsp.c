@@ -27,6 +27,8 @@
 #define RSP_Q24US_PER_Q20S ((uint64_t)16000000u)      /* 2^24 N m us -> 2^20 N m s: 2^4 * 10^6 */
 #define RSP_FOLLOW_Q24   ((int64_t)503316)            /* 0.03 N m in 2^-24 N m (spec 30 §8) */
 #define RSP_FOLLOW_S     ((int64_t)10)                /* ... for 10 s */
+#define RSP_ALPHA_MAX    ((int32_t)536870912)         /* 0.5 in Q30: the G filter's largest blend */
+#define RSP_US_PER_S     ((uint64_t)1000000u)         /* Ts in Q0.31 = period_us 2^31 / 10^6 */
 
 /* Per-step scratch of the samples' derived values. g, |xi|, C_phi, M_cmd and M_del are formed
    straight in the telemetry block (the stack of rsp_step stays well under its 256 B budget). */
@@ -100,6 +102,14 @@ static void check_limits(const rsp_params_t *p, uint32_t *w)
     if ((p->gyro_max_cnt < 1) || (p->gyro_max_cnt > RSP_GYRO_CNT_MAX) || (p->whl_max_cnt <= 0) || (p->n_fault < 1u) ||
         (p->n_stale < 1u) || (p->n_whl_est < 1u)) {
         *w |= RSP_WHY_SENSOR;
+    }
+    if ((p->gfilt_alpha_q30 < 0) || (p->gfilt_alpha_q30 > RSP_ALPHA_MAX)) {
+        *w |= RSP_WHY_FILTER;
+    }
+    if ((p->hg_q20 <= 0) || (p->lambda_q28 <= 0) || (p->lambda_q28 > (int32_t)268435456) || (p->umax_cnt < 1) ||
+        (p->umax_cnt > (int32_t)INT16_MAX) || (p->ms_sing_q28 <= 0) || (p->rotor_nom_cnt <= 0) ||
+        (p->rotor_tol_q16 < 1u) || (p->rotor_tol_q16 > 65536u)) {
+        *w |= RSP_WHY_CMG;
     }
     if ((p->outlier_q20 <= 0) || (p->outlier_rel_q16 < 1u) || (p->drift_q30 <= 0) || (p->drift_sh < 1u) ||
         (p->drift_sh > 20u) || (p->ealarm_q32 <= 0) || (p->done_xi_q30 <= 0) || (p->done_h_q20 <= 0) ||
@@ -345,13 +355,74 @@ static bool outlier(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
     return bad;
 }
 
-static void direction(rsp_state_t *s, rsp_work_t *w)
+/* a x b of two int32 vectors in Q(qa) and Q(qb), result in Q(qb) (one rounding per component):
+   each product < 2^(31+31), the difference of two < 2^63 for the ranges argued at the call. */
+static void cross_q(const int32_t a[3], const int32_t b[3], uint32_t qa, int32_t r[3], fx_status_t *st)
+{
+    r[0] = fx_rshift_sat(((int64_t)a[1] * (int64_t)b[2]) - ((int64_t)a[2] * (int64_t)b[1]), qa, st);
+    r[1] = fx_rshift_sat(((int64_t)a[2] * (int64_t)b[0]) - ((int64_t)a[0] * (int64_t)b[2]), qa, st);
+    r[2] = fx_rshift_sat(((int64_t)a[0] * (int64_t)b[1]) - ((int64_t)a[1] * (int64_t)b[0]), qa, st);
+}
+
+/* The kinematic G filter of spec 30 §3.6: G_hat^- = G_hat - theta x G_hat + 1/2 theta x (theta x
+   G_hat), theta = omega Ts (the body turns by theta over a tick, so a body-fixed view of the
+   inertially fixed G turns by -theta); G_hat = G_hat^- + alpha (G_k - G_hat^-); then |G_hat| back to
+   g0 by one Newton step c = 2 - |G_hat| / g0 (second order in the step's few-1e-5 error). Rigid
+   motion passes without lag; modal ringing in G_k = J omega + H (which misses D qdot) is attenuated
+   by about alpha / (Omega Ts). Seeded from G_k on the first valid tick and after every invalid
+   tick: propagating through a gap with no rate would leave G_hat rotated by the gap's |omega| t.
+   Ranges: |omega| < 1 rad/s, Ts <= 1 s, so |theta| < 2^30 (Q1.30); |G_hat| <= 2 g0 < 2^31 (q20);
+   products < 2^61, cross differences < 2^62. */
+static void gfilter(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
+{
+    if (!s->have_ghat) {
+        uint32_t i;
+        for (i = 0u; i < RSP_N_AX; i++) {
+            s->ghat_q20[i] = w->gm_q20[i];
+        }
+        s->have_ghat = true;
+    } else {
+        int32_t th_q30[3];
+        int32_t c1[3];
+        int32_t c2[3];
+        uint64_t sq = 0u;
+        int64_t ratio_q30;
+        int64_t c_q30;
+        uint32_t i;
+        /* period_us <= 10^6 (table limit): Ts <= 1 s, ts_q31 <= 2^31 */
+        int64_t ts_q31 = (int64_t)fx_udiv_rnd64((uint64_t)p->period_us << 31, RSP_US_PER_S);
+        for (i = 0u; i < RSP_N_AX; i++) {
+            th_q30[i] = fx_rshift_sat((int64_t)w->omega_q28[i] * ts_q31, 29u, &w->st);
+        }
+        cross_q(th_q30, s->ghat_q20, 30u, c1, &w->st);
+        cross_q(th_q30, c1, 30u, c2, &w->st);
+        for (i = 0u; i < RSP_N_AX; i++) {
+            int64_t gm = ((int64_t)s->ghat_q20[i] - (int64_t)c1[i]) + fx_shr_rnd64((int64_t)c2[i], 1u, &w->st);
+            int64_t gb = gm + fx_shr_rnd64(((int64_t)w->gm_q20[i] - gm) * (int64_t)p->gfilt_alpha_q30, 30u, &w->st);
+            s->ghat_q20[i] = fx_sat32(gb, &w->st);
+            int64_t g_sq = (int64_t)s->ghat_q20[i] * (int64_t)s->ghat_q20[i];
+            sq += (uint64_t)g_sq;   /* each <= 2^62: three stay below 2^64 */
+        }
+        ratio_q30 = (int64_t)fx_recip_div((int64_t)fx_isqrt64(sq), &s->r0, 30u, &w->st);
+        c_q30 = (2 * RSP_Q30_ONE) - ratio_q30;
+        for (i = 0u; i < RSP_N_AX; i++) {
+            s->ghat_q20[i] = fx_rshift_sat((int64_t)s->ghat_q20[i] * c_q30, 30u, &w->st);
+        }
+    }
+}
+
+static void direction(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
 {
     uint32_t i;
     int64_t gx_sq;
     int64_t gz_sq;
+    const int32_t *gsrc = w->gm_q20;
+    if (p->gfilt_alpha_q30 > 0) {
+        gfilter(s, p, w);
+        gsrc = s->ghat_q20;
+    }
     for (i = 0u; i < RSP_N_AX; i++) {
-        s->tlm.g_q30[i] = fx_recip_div((int64_t)w->gm_q20[i], &s->r0, 30u, &w->st);
+        s->tlm.g_q30[i] = fx_recip_div((int64_t)gsrc[i], &s->r0, 30u, &w->st);
     }
     gx_sq = (int64_t)s->tlm.g_q30[0] * (int64_t)s->tlm.g_q30[0];
     gz_sq = (int64_t)s->tlm.g_q30[2] * (int64_t)s->tlm.g_q30[2];
@@ -623,7 +694,7 @@ static bool run_tick(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
     if (ok) {
         bool first = !s->have_t0;
         bool guard = s->tlm.g0_q20 < p->gguard_q20;
-        direction(s, w);
+        direction(s, p, w);
         region_tick(s, p, first, guard);
         if (first) {
             s->tlm.cphi_q30 = neg_if(s->tlm.g_q30[1], s->a_f < 0, &w->st);
@@ -650,6 +721,7 @@ static void invalid_tick(rsp_state_t *s, const rsp_params_t *p)
         s->input_fault = true;
     }
     s->have_prev = false;
+    s->have_ghat = false;
 }
 
 static void phase_flags(const rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)

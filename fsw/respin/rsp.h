@@ -16,6 +16,8 @@
  *   wheel speed whl_speed_cnt[3]  2^-10 rad/s;  h_whl_B_q20 = round(cnt * iw_q30 / 2^20)
  *   momentum    G, H, Jw, g0       int32, LSB 2^-20 N m s (suffix _q20)
  *   inertia     J_i                int32, LSB 2^-19 kg m^2 (j_q19)
+ *   G filter (optional)            G_hat propagated by theta = omega Ts (Q1.30), blended with G,
+ *                                  rescaled to g0 by one Newton step; g = G_hat / g0 when on
  *   g = G / g0                     through fx_recip (the reciprocal of g0 made once when g0
  *                                  freezes; each quotient correctly rounded, README "formats")
  *   g, xi, e_xi, C_phi, |xi|       Q1.30
@@ -67,6 +69,13 @@ typedef struct {
     int32_t  done_xi_q30;      /* done: |xi| < done_xi (0.01) ... */
     int32_t  done_h_q20;       /* ... and |H - H_f| < done_h (0.05 N m s) per axis ... */
     uint32_t done_ticks;       /* ... for done_ticks ticks (300 s) */
+    int32_t  gfilt_alpha_q30;  /* G filter blend alpha per tick, Q30 (0.05); 0: filter off (spec 30 §3.6) */
+    int32_t  hg_q20;           /* gyrodine rotor momentum h_g (7.5 N m s) */
+    int32_t  lambda_q28;       /* singularity-robust damping lambda0, Q3.28 (0.05) */
+    int32_t  umax_cnt;         /* gimbal-rate limit in command counts of 2^-16 rad/s (11 437 = 0.1745 rad/s) */
+    int32_t  ms_sing_q28;      /* SINGULAR below this singularity measure m_s, Q3.28 (0.05) */
+    int32_t  rotor_nom_cnt;    /* nominal rotor speed in counts of 2^-8 rad/s (600 rad/s) */
+    uint32_t rotor_tol_q16;    /* ROTOR_FAULT beyond |Omega_r / Omega_nom - 1| (0.01), Q16 */
     uint32_t revision;         /* table revision (the image header's) */
 } rsp_params_t;
 
@@ -117,6 +126,8 @@ typedef struct {
     fx_recip_t r0;             /* reciprocal of g0 (fx_recip_init once g0 froze) */
     bool     have_prev;        /* omega_prev / h_prev hold the last valid tick */
     int32_t  omega_prev_q28[3];
+    bool     have_ghat;        /* ghat holds the G filter's estimate (false: re-seed from G_k) */
+    int32_t  ghat_q20[3];      /* G filter estimate (spec 30 §3.6), LSB 2^-20 N m s */
     int32_t  h_prev_q20[3];
     int32_t  h_last_q20[3];    /* last good wheel momentum per axis (propagation base) */
     int32_t  mdel_last_q24[3]; /* moment commanded last tick (wheel propagation, M_del check) */

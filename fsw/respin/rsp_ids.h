@@ -34,6 +34,8 @@
 #define RSP_WHY_GUARDS               (0x00000040u)  /* 0 < g_min <= g_guard, n_g0 in 1..1024 */
 #define RSP_WHY_SENSOR               (0x00000080u)  /* gyro / wheel full scale, n_fault, n_stale, n_whl_est */
 #define RSP_WHY_HEALTH               (0x00000100u)  /* outlier, drift, energy alarm or done limits */
+#define RSP_WHY_FILTER               (0x00000200u)  /* G filter alpha outside [0, 0.5] */
+#define RSP_WHY_CMG                  (0x00000400u)  /* gyrodine h_g, lambda0, u_max, m_s threshold or rotor speed out of range */
 
 /* module phases: g0 averaging, low momentum, law */
 #define RSP_PH_G0                    0u
@@ -62,7 +64,7 @@
 #define RSP_N_SENS                   6u
 #define RSP_N_ACT                    3u
 #define RSP_TBL_ID                   0x0B06u
-#define RSP_TBL_LAYOUT               1u
+#define RSP_TBL_LAYOUT               2u
 #define RSP_TLM_BYTES                164u  /* bytes of the block rsp_tlm_wr writes */
 #define RSP_TLM_LAYOUT               0x00040001u  /* layout version of the whole telemetry */
 #define RSP_TLM_TOTAL_BYTES          268u  /* bytes of the whole telemetry: header, actuators, health, block */

@@ -85,6 +85,8 @@ MODULE = Module(
         Bit("GUARDS", 0x040, "0 < g_min <= g_guard, n_g0 in 1..1024"),
         Bit("SENSOR", 0x080, "gyro / wheel full scale, n_fault, n_stale, n_whl_est"),
         Bit("HEALTH", 0x100, "outlier, drift, energy alarm or done limits"),
+        Bit("FILTER", 0x200, "G filter alpha outside [0, 0.5]"),
+        Bit("CMG", 0x400, "gyrodine h_g, lambda0, u_max, m_s threshold or rotor speed out of range"),
     ],
     enums=[
         enum("ph", "RSP_PH_", [("G0", 0), ("LOW", 1), ("RUN", 2)], "module phases: g0 averaging, low momentum, law"),
@@ -94,10 +96,11 @@ MODULE = Module(
     ],
     commands=[tc("RESET_COUNTERS", 1, "clear the module's counters and sticky health")],
     table_id=0x0B06,
-    table_layout=1,
+    table_layout=2,
     table_fields=["period_us", "mode", "act_kind", "j_x_q19", "j_y_q19", "j_z_q19", "iw_q30", "eps1_q30",
                   "eps2_q30", "heps_q30", "m_q24", "k_q30", "mstar_q24", "mmax_q24", "hlim_q20", "inv_ts_q16",
                   "gguard_q20", "gmin_q20", "n_g0", "gyro_max_cnt", "whl_max_cnt", "n_fault", "n_stale",
                   "n_whl_est", "outlier_q20", "outlier_rel_q16", "drift_q30", "drift_sh", "ealarm_q32",
-                  "done_xi_q30", "done_h_q20", "done_ticks"],
+                  "done_xi_q30", "done_h_q20", "done_ticks", "gfilt_alpha_q30", "hg_q20", "lambda_q28", "umax_cnt",
+                  "ms_sing_q28", "rotor_nom_cnt", "rotor_tol_q16"],
 )

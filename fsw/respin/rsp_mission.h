@@ -12,7 +12,7 @@
 #include "rsp.h"
 #include "fsw_mission.h"
 
-#define RSP_TBL_PAYLOAD 128u  /* bytes; rsp_table.c documents the layout */
+#define RSP_TBL_PAYLOAD 156u  /* bytes; rsp_table.c documents the layout */
 
 /* The mission's block inside fsw_t. */
 typedef struct {

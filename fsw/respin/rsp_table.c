@@ -1,7 +1,7 @@
 /*
  * rsp_table.c — the respin parameter table on the wire (spec 00 §3.2, spec 30 §3.4, §8).
  *
- * table_id RSP_TBL_ID, layout RSP_TBL_LAYOUT, payload RSP_TBL_PAYLOAD (128) bytes, little-endian,
+ * table_id RSP_TBL_ID, layout RSP_TBL_LAYOUT, payload RSP_TBL_PAYLOAD (156) bytes, little-endian,
  * field by field, every field 4 bytes. The header revision becomes rsp_params_t.revision.
  *
  *   off  type     field              off  type  field
@@ -19,8 +19,14 @@
  *    52  i32      mmax_q24           116  i32   done_xi_q30
  *    56  i32      hlim_q20           120  i32   done_h_q20
  *    60  i32      inv_ts_q16         124  u32   done_ticks      [1, 2^24]
- *    64  i32      gguard_q20 (>= gmin)
- *    68  i32      gmin_q20
+ *    64  i32      gguard_q20 (>= gmin) 128  i32   gfilt_alpha_q30 [0, 0.5]  (0: G filter off)
+ *    68  i32      gmin_q20            132  i32   hg_q20
+ *                                     136  i32   lambda_q28      [., 1.0]
+ *                                     140  i32   umax_cnt        [1, 32767]
+ *                                     144  i32   ms_sing_q28     [., 4.0]
+ *                                     148  i32   rotor_nom_cnt
+ *                                     152  u32   rotor_tol_q16   [1, 2^16]
+ * Layout 2 added the last seven (the G filter and the gyrodine cluster): a layout-1 image is refused.
  *
  * Every value must be positive (limits below, naming the field); rsp_params_check adds the
  * cross-field rules (thresholds and hysteresis, m = M_max / eps1, 1/Ts against the period,
@@ -65,6 +71,13 @@ static const fsw_field_lim_t RSP_LIMS[] = {
     {116u, FSW_FT_I32, 1, Q30ONE},       /* 29 done_xi_q30 */
     {120u, FSW_FT_I32, 1, I32MAX},       /* 30 done_h_q20 */
     {124u, FSW_FT_U32, 1, 16777216},     /* 31 done_ticks */
+    {128u, FSW_FT_I32, 0, 536870912},    /* 32 gfilt_alpha_q30 (0 = off; at most 0.5) */
+    {132u, FSW_FT_I32, 1, I32MAX},       /* 33 hg_q20 */
+    {136u, FSW_FT_I32, 1, 268435456},    /* 34 lambda_q28 */
+    {140u, FSW_FT_I32, 1, 32767},        /* 35 umax_cnt (int16 command) */
+    {144u, FSW_FT_I32, 1, Q30ONE},       /* 36 ms_sing_q28 */
+    {148u, FSW_FT_I32, 1, I32MAX},       /* 37 rotor_nom_cnt */
+    {152u, FSW_FT_U32, 1, 65536},        /* 38 rotor_tol_q16 */
 };
 
 /* value[a] + margin <= value[b]: eps1 < eps2, g_min <= g_guard */
@@ -115,6 +128,13 @@ uint32_t rsp_table_encode(const rsp_params_t *p, uint32_t revision, uint8_t *img
         fsw_wr_i32(&w, p->done_xi_q30);
         fsw_wr_i32(&w, p->done_h_q20);
         fsw_wr_u32(&w, p->done_ticks);
+        fsw_wr_i32(&w, p->gfilt_alpha_q30);
+        fsw_wr_i32(&w, p->hg_q20);
+        fsw_wr_i32(&w, p->lambda_q28);
+        fsw_wr_i32(&w, p->umax_cnt);
+        fsw_wr_i32(&w, p->ms_sing_q28);
+        fsw_wr_i32(&w, p->rotor_nom_cnt);
+        fsw_wr_u32(&w, p->rotor_tol_q16);
         if ((!w.err) && (w.pos == RSP_TBL_PAYLOAD)) {
             fsw_table_write_header(img, (uint16_t)RSP_TBL_ID, (uint16_t)RSP_TBL_LAYOUT,
                                    RSP_TBL_PAYLOAD, revision);
@@ -160,6 +180,13 @@ fsw_rc_t rsp_table_decode(const uint8_t *payload, uint32_t len, uint32_t revisio
         p->done_xi_q30 = fsw_rd_i32(&r);
         p->done_h_q20 = fsw_rd_i32(&r);
         p->done_ticks = fsw_rd_u32(&r);
+        p->gfilt_alpha_q30 = fsw_rd_i32(&r);
+        p->hg_q20 = fsw_rd_i32(&r);
+        p->lambda_q28 = fsw_rd_i32(&r);
+        p->umax_cnt = fsw_rd_i32(&r);
+        p->ms_sing_q28 = fsw_rd_i32(&r);
+        p->rotor_nom_cnt = fsw_rd_i32(&r);
+        p->rotor_tol_q16 = fsw_rd_u32(&r);
         p->revision = revision;
         if ((!r.err) && (r.pos == len)) {
             rc = FSW_OK;

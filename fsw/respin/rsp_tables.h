@@ -8,5 +8,6 @@ extern const rsp_params_t RSP_TBL_DEFAULT;   /* rsp_default */
 extern const rsp_params_t RSP_TBL_PRINTED;   /* rsp_printed */
 extern const rsp_params_t RSP_TBL_TS05;   /* rsp_ts05 */
 extern const rsp_params_t RSP_TBL_NOGUARD;   /* rsp_noguard */
+extern const rsp_params_t RSP_TBL_GFILT;   /* rsp_gfilt */
 
 #endif /* FSW_RSP_TABLES_H */

@@ -114,8 +114,8 @@ std::vector<std::string> RespinPlant::truth_names() const
 {
     return {"omega_BN_B_x_radps", "omega_BN_B_y_radps", "omega_BN_B_z_radps", "h_whl_x_nms", "h_whl_y_nms",
             "h_whl_z_nms", "g_B_x_nms", "g_B_y_nms", "g_B_z_nms", "q_BI_w", "q_BI_x", "q_BI_y", "q_BI_z", "t_body_j",
-            "e_check_j", "xi_abs", "tau_whl_x_nm", "tau_whl_y_nm", "tau_whl_z_nm", "g0_nms", "g_I_x_nms", "g_I_y_nms",
-            "g_I_z_nms", "g_y_rel"};
+            "e_check_j", "xi_abs", "tau_whl_x_nm", "tau_whl_y_nm", "tau_whl_z_nm", "g0_nms", "q_mode1_sqrtkgm",
+            "q_mode2_sqrtkgm", "q_mode3_sqrtkgm", "g_y_rel"};
 }
 
 std::vector<double> RespinPlant::truth() const
@@ -147,9 +147,8 @@ void RespinPlant::truth_message(std::array<double, 16> &state, std::array<double
     state[14] = energy_check_j();
     state[15] = gn > 0.0 ? std::sqrt(s_.g_nms[0] * s_.g_nms[0] + s_.g_nms[2] * s_.g_nms[2]) / gn : 0.0;
     extra[3] = s_.g0_nms;
-    const ref::V3 gi = ref::gyrostat_g_inertial(s_);
-    for (std::size_t i = 0; i < 3u; ++i) {
-        extra[4u + i] = gi[i];
+    for (std::size_t k = 0; k < 3u; ++k) {
+        extra[kExtraQm + k] = s_.q_m[k];   // zero for a rigid body
     }
     extra[7] = gn > 0.0 ? s_.g_nms[1] / gn : 0.0;
 }

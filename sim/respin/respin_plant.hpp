@@ -5,6 +5,9 @@
 // so the RK4 error is far below every figure compared; the same step the elastic variant needs,
 // Omega_max h <= 0.25); G re-projected onto |G| = g0 after every step (ref::gyrostat_tick).
 //
+// Elastic variant (respin.elastic: E1 | E2): the array modes of ref::GyrostatModel; the gyro sees
+// the body rate, the flight's J omega + H misses D qdot.
+//
 // Sensor frame, 6 channels:   0..2 rate gyro omega_BN_B x/y/z [2^-22 rad/s]: (1 + scale) omega
 //                             + bias + white noise, +-2^22 counts (SAT at full scale);
 //                             3..5 wheel speed x/y/z [2^-10 rad/s]: Omega = H / I_w, +-600 rad/s (SAT).
@@ -18,7 +21,9 @@
 //   state[9..12] q_BI (w, x, y, z)      state[13]    T = 1/2 omega^T J omega [J]
 //   state[14]    T0 + int omega^T M dt [J] (the energy check: equals T for a rigid body)
 //   state[15]    |xi| = sqrt(G_x^2 + G_z^2) / |G| (truth, independent of a_f)
-//   extra[0..2]  applied wheel torque [N m]   extra[3] g0 [N m s]   extra[4..6] G_I = R_IB G [N m s]
+//   extra[0..2]  applied wheel torque [N m]   extra[3] g0 [N m s]
+//   extra[4..6]  modal coordinates q_1..q_3 [kg^1/2 m] of the elastic variant (0 when rigid;
+//                the inertial invariant G_I = R_IB G follows from state[6..12])
 //   extra[7]     G_y / |G| (C_phi for f = +e_y)
 #ifndef SIM_RSP_PLANT_HPP
 #define SIM_RSP_PLANT_HPP
@@ -40,7 +45,7 @@ public:
     // Indices into sim_truth_t.state / .extra (the layout above).
     static constexpr std::size_t kTruthW = 0u, kTruthH = 3u, kTruthG = 6u, kTruthQ = 9u, kTruthT = 13u,
                                  kTruthEcheck = 14u, kTruthXi = 15u;
-    static constexpr std::size_t kExtraTau = 0u, kExtraG0 = 3u, kExtraGI = 4u, kExtraGyRel = 7u;
+    static constexpr std::size_t kExtraTau = 0u, kExtraG0 = 3u, kExtraQm = 4u, kExtraGyRel = 7u;
 
     explicit RespinPlant(const Scenario &scn);
     void reset(const Scenario &scn) override;
@@ -60,7 +65,7 @@ public:
     const ref::GyrostatModel &model() const { return model_; }
     ref::V3 omega_radps() const { return ref::gyrostat_omega(model_, s_); }
     double energy_j() const { return ref::gyrostat_energy_j(model_, s_); }
-    double energy_check_j() const { return s_.t0_j + s_.work_j; }   // T0 + int omega^T M dt
+    double energy_check_j() const { return ref::gyrostat_energy_check_j(model_, s_); }   // equals T exactly
     const ref::V3 &applied_torque_nm() const { return applied_nm_; }
     const std::array<double, 3> &gyro_bias_radps() const { return b_.gyro_bias_radps; }
 

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "respin/respin_plant.hpp"
+#include "respin/rsp_table_list.hpp"
 #include "scenario/reader.hpp"
 #include "sensors/rng.hpp"
 
@@ -39,7 +40,14 @@ class RespinSection final : public MissionSection {
 public:
     const char *mission() const override { return "RESPIN"; }
     std::vector<std::string> root_keys() const override { return {"respin"}; }
-    std::vector<std::string> tables() const override { return {"rsp_default", "rsp_printed", "rsp_ts05", "rsp_noguard"}; }
+    std::vector<std::string> tables() const override
+    {
+        std::vector<std::string> v;
+        for (const RespinNamedTable &t : kRespinTables) {
+            v.emplace_back(t.name);
+        }
+        return v;
+    }
 
     void defaults(Scenario &s) const override
     {
@@ -59,7 +67,7 @@ public:
             return;
         }
         r.check_keys(m, "respin", {"g0_nms", "g_dir", "g_dir_seed", "inertia_kgm2", "omega_max_radps", "n_sub", "wheel",
-                                   "gyro"});
+                                   "gyro", "elastic"});
         if (m["g0_nms"]) { b.g0_nms = r.number(m["g0_nms"], "respin.g0_nms", 1e-3, 1000.0); }
         if (m["g_dir"] && m["g_dir_seed"]) {
             r.fail("respin.g_dir_seed", m["g_dir_seed"], "give g_dir or g_dir_seed, not both");
@@ -80,6 +88,23 @@ public:
         if (m["inertia_kgm2"]) { b.j_kgm2 = r.triple(m["inertia_kgm2"], "respin.inertia_kgm2", 1.0, 1e5); }
         if (m["omega_max_radps"]) { b.omega_max_radps = r.number(m["omega_max_radps"], "respin.omega_max_radps", 1e-3, 10.0); }
         if (m["n_sub"]) { b.n_sub = static_cast<int>(r.integer(m["n_sub"], "respin.n_sub", 1, 100)); }
+        if (m["elastic"]) {
+            const std::string e = r.choice(m["elastic"], "respin.elastic", {"none", "E1", "E2"});
+            b.elastic = (e == "none") ? std::string() : e;
+        }
+        if (!b.elastic.empty()) {
+            // RK4 at h = Ts / n_sub must resolve the fastest free-free mode (spec 30 §2: Omega h <= 0.25).
+            ref::GyrostatModel gm;
+            gm.j_kgm2 = b.j_kgm2;
+            ref::gyrostat_set_modes(gm, b.elastic);
+            const double wmax = ref::gyrostat_fastest_mode_radps(gm);
+            const double h = static_cast<double>(s.period_us) * 1e-6 / static_cast<double>(b.n_sub);
+            if (wmax * h > 0.25) {
+                r.fail("respin.n_sub", m["n_sub"] ? m["n_sub"] : m["elastic"],
+                       "RK4 step too long for modal set " + b.elastic + ": need n_sub >= " +
+                           std::to_string(static_cast<int>(std::ceil(wmax * static_cast<double>(s.period_us) * 1e-6 / 0.25))));
+            }
+        }
         if (const YAML::Node w = m["wheel"]) {
             parse_wheel(w, r, b);
         }
@@ -121,15 +146,17 @@ ref::GyrostatModel respin_model(const RespinSetup &b)
     m.h_max_nms = b.h_max_nms;
     m.coulomb_nm = b.coulomb_nm;
     m.viscous_nmps = b.viscous_nmps;
+    ref::gyrostat_set_modes(m, b.elastic);
     return m;
 }
 
 rsp_params_t respin_boot_table(const std::string &name)
 {
-    if (name == "rsp_default") { return RSP_TBL_DEFAULT; }
-    if (name == "rsp_printed") { return RSP_TBL_PRINTED; }
-    if (name == "rsp_ts05") { return RSP_TBL_TS05; }
-    if (name == "rsp_noguard") { return RSP_TBL_NOGUARD; }
+    for (const RespinNamedTable &t : kRespinTables) {
+        if (name == t.name) {
+            return *t.table;
+        }
+    }
     throw std::invalid_argument("unknown respin table '" + name + "'");
 }
 

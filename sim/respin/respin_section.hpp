@@ -6,7 +6,7 @@
 //   mission: respin
 //   plant: respin (the default), period_us (default 100000)
 //   respin: {g0_nms, g_dir: [x, y, z] | g_dir_seed, inertia_kgm2: [Jx, Jy, Jz], omega_max_radps,
-//            n_sub,
+//            n_sub, elastic: none | E1 | E2,
 //            wheel: {iw_kgm2, torque_max_nm, h_max_nms, coulomb_nm, viscous_nmps},
 //            gyro: {noise_radps, bias_radps: [x, y, z], scale_ppm: [x, y, z], seed}}
 //   fsw: {table: rsp_default | rsp_printed | rsp_ts05 (Ts = 0.5 s: period_us 500000)}
@@ -55,6 +55,7 @@ struct RespinSetup {
     std::uint64_t g_dir_seed = 1u;
     double omega_max_radps = 1.0;                    // |omega| beyond it: DIVERGED (the gyro range)
     int n_sub = 4;                                   // RK4 steps per tick (h = Ts / n_sub)
+    std::string elastic;                             // modal set (spec 30 §2): "" rigid, "E1", "E2"
     double gyro_noise_radps = 0.0;                   // white noise per sample (1 sigma)
     std::array<double, 3> gyro_bias_radps{{0.0, 0.0, 0.0}};
     std::array<double, 3> gyro_scale_ppm{{0.0, 0.0, 0.0}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <stdexcept>
 
 #include <Eigen/Dense>
 
@@ -57,6 +58,13 @@ RespinTable dequantise(const rsp_params_t &p)
     t.done_xi = std::ldexp(static_cast<double>(p.done_xi_q30), -30);
     t.done_h_nms = std::ldexp(static_cast<double>(p.done_h_q20), -20);
     t.done_ticks = p.done_ticks;
+    t.gfilt_alpha = std::ldexp(static_cast<double>(p.gfilt_alpha_q30), -30);
+    t.hg_nms = std::ldexp(static_cast<double>(p.hg_q20), -20);
+    t.sr_lambda = std::ldexp(static_cast<double>(p.lambda_q28), -28);
+    t.umax_cnt = p.umax_cnt;
+    t.ms_sing = std::ldexp(static_cast<double>(p.ms_sing_q28), -28);
+    t.rotor_nom_cnt = p.rotor_nom_cnt;
+    t.rotor_tol = std::ldexp(static_cast<double>(p.rotor_tol_q16), -16);
     return t;
 }
 
@@ -254,9 +262,33 @@ RespinRefOut RespinRef::step(const RespinRefIn &in)
     o.valid = valid;
 
     if (valid) {
+        // 2b. The optional G filter (§3.6): seeded from G_k after any invalid tick, as the flight.
+        V3 gsrc = gv;
+        if (t.gfilt_alpha > 0.0) {
+            if (!have_ghat_) {
+                ghat_nms_ = gv;
+                have_ghat_ = true;
+            } else {
+                const V3 th{{w[0] * t.ts_s, w[1] * t.ts_s, w[2] * t.ts_s}};
+                auto cross = [](const V3 &a, const V3 &b) {
+                    return V3{{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+                };
+                const V3 c1 = cross(th, ghat_nms_);
+                const V3 c2 = cross(th, c1);
+                for (std::size_t i = 0; i < 3u; ++i) {
+                    const double gm = ghat_nms_[i] - c1[i] + 0.5 * c2[i];
+                    ghat_nms_[i] = gm + t.gfilt_alpha * (gv[i] - gm);
+                }
+                const double c = 2.0 - norm3(ghat_nms_) * r0_pnms_;   // one Newton step to |G_hat| = g0
+                for (std::size_t i = 0; i < 3u; ++i) {
+                    ghat_nms_[i] *= c;
+                }
+            }
+            gsrc = ghat_nms_;
+        }
         // 3-6. The law.
         for (std::size_t i = 0; i < 3u; ++i) {
-            o.g[i] = gv[i] * r0_pnms_;
+            o.g[i] = gsrc[i] * r0_pnms_;
         }
         o.rho = gabs * r0_pnms_ - 1.0;
         const RespinLawOut lo = rsp_law_tick(t, law_, o.g, h);
@@ -313,6 +345,7 @@ RespinRefOut RespinRef::step(const RespinRefIn &in)
         done_run_ = in_tol ? done_run_ + 1u : 0u;
     } else {
         ++n_invalid_;
+        have_ghat_ = false;
         // Zero command; region, a_f and latch kept (§3.7 step 1).
         if (phase_ == RSP_PH_RUN) {
             o.g = {{gv[0] * r0_pnms_, gv[1] * r0_pnms_, gv[2] * r0_pnms_}};
@@ -348,22 +381,60 @@ std::int32_t torque_counts(double torque_nm)
 
 namespace {
 
-// Integrator state: G (0..2), H (3..5), q (6..9), work (10).
-constexpr std::size_t kNy = 11u;
+// Integrator state: G (0..2), H (3..5), q (6..9), work (10), modal q (11..13), modal p (14..16),
+// dissipated energy (17). Modal slots of a rigid model stay zero.
+constexpr std::size_t kNy = 18u;
+constexpr std::size_t kYq = 11u, kYp = 14u, kYdiss = 17u;
+constexpr double kPi = 3.14159265358979323846;
 using Y = std::array<double, kNy>;
+
+// Per body axis: J - D D^T and the modes' momentum D p on it (one mode per axis at most).
+struct AxisModal {
+    V3 jeff{{0.0, 0.0, 0.0}};
+};
+
+AxisModal axis_modal(const GyrostatModel &m)
+{
+    AxisModal a;
+    a.jeff = m.j_kgm2;
+    for (std::size_t k = 0; k < m.n_modes; ++k) {
+        a.jeff[m.modes[k].axis] -= m.modes[k].d_sqrtkgm * m.modes[k].d_sqrtkgm;
+    }
+    return a;
+}
+
+// omega = (J - D D^T)^-1 (G - H - D p): g, h, p point at three values each.
+V3 body_rate(const GyrostatModel &m, const AxisModal &a, const double *g, const double *h, const double *p)
+{
+    V3 dp{{0.0, 0.0, 0.0}};
+    for (std::size_t k = 0; k < m.n_modes; ++k) {
+        dp[m.modes[k].axis] += m.modes[k].d_sqrtkgm * p[k];
+    }
+    if (m.n_modes == 0u) {   // the rigid expression, exactly as before the elastic variant existed
+        return {{(g[0] - h[0]) / a.jeff[0], (g[1] - h[1]) / a.jeff[1], (g[2] - h[2]) / a.jeff[2]}};
+    }
+    return {{(g[0] - h[0] - dp[0]) / a.jeff[0], (g[1] - h[1] - dp[1]) / a.jeff[1], (g[2] - h[2] - dp[2]) / a.jeff[2]}};
+}
+
+V3 modal_rate(const GyrostatModel &m, const V3 &w, const double *p)
+{
+    V3 qd{{0.0, 0.0, 0.0}};
+    for (std::size_t k = 0; k < m.n_modes; ++k) {
+        qd[k] = p[k] - m.modes[k].d_sqrtkgm * w[m.modes[k].axis];
+    }
+    return qd;
+}
 
 struct Deriv {
     const GyrostatModel &m;
+    AxisModal am;
     V3 tau;                                  // motor torque after the motor limit (ZOH)
     std::array<bool, 3> *cut;
 
     Y operator()(const Y &y) const
     {
         Y d{};
-        V3 w{};
-        for (std::size_t i = 0; i < 3u; ++i) {
-            w[i] = (y[i] - y[3u + i]) / m.j_kgm2[i];
-        }
+        const V3 w = body_rate(m, am, &y[0], &y[3], &y[kYp]);
         for (std::size_t i = 0; i < 3u; ++i) {
             const double hi = y[3u + i];
             const double om = hi / m.iw_kgm2;
@@ -388,6 +459,16 @@ struct Deriv {
         d[9] = 0.5 * (qw * w[2] + qx * w[1] - qy * w[0]);
         // d(work)/dt = omega^T M, M = -dH/dt (the internal moment on the body)
         d[10] = -(w[0] * d[3] + w[1] * d[4] + w[2] * d[5]);
+        if (m.n_modes > 0u) {
+            const V3 qd = modal_rate(m, w, &y[kYp]);
+            for (std::size_t k = 0; k < m.n_modes; ++k) {
+                const ElasticMode &e = m.modes[k];
+                const double c = e.delta / kPi * e.omega_radps;   // (delta / pi) Omega
+                d[kYq + k] = qd[k];
+                d[kYp + k] = -c * qd[k] - e.omega_radps * e.omega_radps * y[kYq + k];
+                d[kYdiss] += c * qd[k] * qd[k];
+            }
+        }
         return d;
     }
 };
@@ -401,7 +482,54 @@ Y axpy(const Y &y, const Y &k, double a)
     return r;
 }
 
+// Elastic energy E - T = omega^T D qdot + 1/2 |qdot|^2 + 1/2 q^T Omega^2 q.
+double elastic_energy_j(const GyrostatModel &m, const V3 &w, const V3 &qd, const V3 &q)
+{
+    double e = 0.0;
+    for (std::size_t k = 0; k < m.n_modes; ++k) {
+        const ElasticMode &md = m.modes[k];
+        e += md.d_sqrtkgm * w[md.axis] * qd[k] + 0.5 * qd[k] * qd[k] +
+             0.5 * md.omega_radps * md.omega_radps * q[k] * q[k];
+    }
+    return e;
+}
+
 }  // namespace
+
+void gyrostat_set_modes(GyrostatModel &m, const std::string &set)
+{
+    // spec 30 §2, documented modal set: (axis, Omega rad/s, d kg^1/2 m); delta = 0.02 for all.
+    struct Row { std::size_t axis; double omega, d; };
+    const Row e1[3] = {{1u, 1.5, 30.0}, {0u, 4.0, 20.0}, {2u, 8.0, 5.0}};
+    const Row e2[3] = {{1u, 0.8, 40.0}, {0u, 2.5, 25.0}, {2u, 6.0, 8.0}};
+    const Row *rows = nullptr;
+    if (set.empty() || set == "none") {
+        m.n_modes = 0u;
+        m.modes = {};
+        return;
+    }
+    if (set == "E1") {
+        rows = e1;
+    } else if (set == "E2") {
+        rows = e2;
+    } else {
+        throw std::invalid_argument("unknown modal set '" + set + "' (E1, E2 or none)");
+    }
+    m.n_modes = 3u;
+    for (std::size_t k = 0; k < 3u; ++k) {
+        m.modes[k] = ElasticMode{rows[k].axis, rows[k].omega, rows[k].d, 0.02};
+    }
+}
+
+double gyrostat_fastest_mode_radps(const GyrostatModel &m)
+{
+    double w = 0.0;
+    for (std::size_t k = 0; k < m.n_modes; ++k) {
+        const ElasticMode &e = m.modes[k];
+        w = std::max(w, e.omega_radps / std::sqrt(1.0 - e.d_sqrtkgm * e.d_sqrtkgm / m.j_kgm2[e.axis]));
+    }
+    return w;
+}
 
 GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g0_nms)
 {
@@ -411,22 +539,41 @@ GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g
         s.g_nms[i] = n > 0.0 ? g0_nms * g_dir[i] / n : 0.0;
         s.h_nms[i] = 0.0;
     }
+    // Modes at rest (q = 0, qdot = 0): then G = J omega, omega = J^-1 G and p = D^T omega.
+    for (std::size_t k = 0; k < m.n_modes; ++k) {
+        const std::size_t ax = m.modes[k].axis;
+        s.p_m[k] = m.modes[k].d_sqrtkgm * s.g_nms[ax] / m.j_kgm2[ax];
+    }
     s.g0_nms = g0_nms;
-    s.t0_j = gyrostat_energy_j(m, s);
+    s.t0_j = gyrostat_energy_j(m, s);   // the elastic energy is zero at rest
     s.work_j = 0.0;
+    s.diss_j = 0.0;
     return s;
 }
 
 V3 gyrostat_omega(const GyrostatModel &m, const GyrostatState &s)
 {
-    return {{(s.g_nms[0] - s.h_nms[0]) / m.j_kgm2[0], (s.g_nms[1] - s.h_nms[1]) / m.j_kgm2[1],
-             (s.g_nms[2] - s.h_nms[2]) / m.j_kgm2[2]}};
+    return body_rate(m, axis_modal(m), s.g_nms.data(), s.h_nms.data(), s.p_m.data());
+}
+
+V3 gyrostat_qdot(const GyrostatModel &m, const GyrostatState &s)
+{
+    return modal_rate(m, gyrostat_omega(m, s), s.p_m.data());
 }
 
 double gyrostat_energy_j(const GyrostatModel &m, const GyrostatState &s)
 {
     const V3 w = gyrostat_omega(m, s);
     return 0.5 * (m.j_kgm2[0] * w[0] * w[0] + m.j_kgm2[1] * w[1] * w[1] + m.j_kgm2[2] * w[2] * w[2]);
+}
+
+double gyrostat_energy_check_j(const GyrostatModel &m, const GyrostatState &s)
+{
+    if (m.n_modes == 0u) {
+        return s.t0_j + s.work_j;
+    }
+    const V3 w = gyrostat_omega(m, s);
+    return s.t0_j + s.work_j - s.diss_j - elastic_energy_j(m, w, modal_rate(m, w, s.p_m.data()), s.q_m);
 }
 
 V3 gyrostat_g_inertial(const GyrostatState &s)
@@ -449,7 +596,7 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
     }
     const int n = std::max(n_sub, 1);
     const double h = dt_s / static_cast<double>(n);
-    const Deriv f{m, r.torque_nm, &r.hlim_cut};
+    const Deriv f{m, axis_modal(m), r.torque_nm, &r.hlim_cut};
     Y y{};
     for (std::size_t i = 0; i < 3u; ++i) {
         y[i] = s.g_nms[i];
@@ -459,6 +606,11 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
         y[6u + i] = s.q_bi[i];
     }
     y[10] = s.work_j;
+    for (std::size_t k = 0; k < 3u; ++k) {
+        y[kYq + k] = s.q_m[k];
+        y[kYp + k] = s.p_m[k];
+    }
+    y[kYdiss] = s.diss_j;
     for (int step = 0; step < n; ++step) {
         const Y k1 = f(y);
         const Y k2 = f(axpy(y, k1, 0.5 * h));
@@ -474,7 +626,7 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
             const double hi = y[3u + i];
             if (std::fabs(hi) > m.h_max_nms) {
                 const double dh = std::copysign(m.h_max_nms, hi) - hi;
-                const double wi = (y[i] - hi) / m.j_kgm2[i];
+                const double wi = body_rate(m, f.am, &y[0], &y[3], &y[kYp])[i];
                 y[10] -= wi * dh;
                 y[3u + i] += dh;
                 r.hlim_cut[i] = true;
@@ -503,6 +655,11 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
         s.q_bi[i] = y[6u + i];
     }
     s.work_j = y[10];
+    for (std::size_t k = 0; k < 3u; ++k) {
+        s.q_m[k] = y[kYq + k];
+        s.p_m[k] = y[kYp + k];
+    }
+    s.diss_j = y[kYdiss];
     return r;
 }
 

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 extern "C" {
@@ -63,6 +64,13 @@ struct RespinTable {
     double ealarm_j = 0.0;
     double done_xi = 0.0, done_h_nms = 0.0;
     std::uint32_t done_ticks = 0u;
+    double gfilt_alpha = 0.0;     // G filter blend per tick (0: off)
+    double hg_nms = 0.0;          // gyrodine rotor momentum
+    double sr_lambda = 0.0;       // singularity-robust damping lambda0
+    std::int32_t umax_cnt = 0;    // gimbal-rate limit, counts of 2^-16 rad/s
+    double ms_sing = 0.0;         // SINGULAR threshold on m_s
+    std::int32_t rotor_nom_cnt = 0;   // nominal rotor speed, counts of 2^-8 rad/s
+    double rotor_tol = 0.0;       // ROTOR_FAULT tolerance (relative)
 };
 
 RespinTable dequantise(const rsp_params_t &p);
@@ -158,6 +166,8 @@ private:
     V3 h_last_nms_{{0.0, 0.0, 0.0}}, mdel_last_nm_{{0.0, 0.0, 0.0}};
     std::array<std::uint32_t, 3> whl_miss_{{0u, 0u, 0u}};
     double t0_j_ = 0.0, w_j_ = 0.0;
+    bool have_ghat_ = false;
+    V3 ghat_nms_{{0.0, 0.0, 0.0}};     // G filter estimate (spec 30 §3.6)
     std::uint32_t done_run_ = 0u, n_switch_ = 0u;
     std::uint64_t n_invalid_ = 0u;
 };
@@ -171,6 +181,26 @@ std::int32_t torque_counts(double torque_nm);
 // where it would increase |H_i|, plus bearing friction). Integrated by RK4 with n_sub steps per
 // tick; q_BI (Hamilton, scalar first, v_I = q v_B q*) follows dq/dt = 1/2 q (0, omega).
 
+//
+// Elastic variant (spec 30 §2): up to three cantilevered array modes, unit modal mass, each coupled
+// with one body axis (coupling column d_i e_axis(i), distinct axes, as in the documented sets E1 and
+// E2): G = J omega + H + D qdot, D^T omega_dot + q_ddot = -(delta/pi) Omega qdot - Omega^2 q.
+// Integrated in the conjugate modal momenta p = D^T omega + qdot, so that dG/dt = -omega x G keeps
+// its rigid form and omega = (J - D D^T)^-1 (G - H - D p) (diagonal: one mode per axis);
+// dp/dt = -(delta/pi) Omega qdot - Omega^2 q. With no modes every expression reduces to the rigid
+// one bit for bit (x - 0 and J - 0 are exact), so the rigid figures do not move.
+// Energy: E = 1/2 omega^T J omega + omega^T D qdot + 1/2 |qdot|^2 + 1/2 q^T Omega^2 q; dE/dt =
+// omega^T M - sum (delta/pi) Omega_i qdot_i^2 (the modal dissipation, booked in diss_j).
+
+constexpr std::size_t kRspMaxModes = 3u;
+
+struct ElasticMode {
+    std::size_t axis = 0u;           // body axis it couples with (0 x, 1 y, 2 z)
+    double omega_radps = 0.0;        // constrained (clamped-root) frequency Omega_i
+    double d_sqrtkgm = 0.0;          // coupling d_i, kg^1/2 m
+    double delta = 0.0;              // logarithmic decrement
+};
+
 struct GyrostatModel {
     V3 j_kgm2{{2900.0, 3600.0, 670.0}};
     double iw_kgm2 = 0.01;
@@ -178,20 +208,34 @@ struct GyrostatModel {
     double h_max_nms = 5.0;          // hard momentum limit (500 rad/s)
     double coulomb_nm = 0.0;         // bearing friction: -coulomb sgn(Omega) - viscous Omega on the wheel
     double viscous_nmps = 0.0;       // N m per rad/s of wheel speed
+    std::size_t n_modes = 0u;        // 0: rigid
+    std::array<ElasticMode, kRspMaxModes> modes{};
 };
+
+// The documented modal sets of spec 30 §2: "E1" (nominal) and "E2" (stress); "" or "none": rigid.
+// Throws std::invalid_argument for another name.
+void gyrostat_set_modes(GyrostatModel &m, const std::string &set);
+// The fastest free-free modal frequency Omega_i / sqrt(1 - d_i^2 / J_axis) (0 when rigid).
+double gyrostat_fastest_mode_radps(const GyrostatModel &m);
 
 struct GyrostatState {
     V3 g_nms{{0.0, 0.0, 300.0}};     // total momentum, body frame
     V3 h_nms{{0.0, 0.0, 0.0}};       // wheel momenta (about the wheel axes = body axes)
     std::array<double, 4> q_bi{{1.0, 0.0, 0.0, 0.0}};
+    V3 q_m{{0.0, 0.0, 0.0}};         // modal coordinates q_i, kg^1/2 m (elastic variant)
+    V3 p_m{{0.0, 0.0, 0.0}};         // conjugate modal momenta p_i = d_i omega_axis + qdot_i
     double g0_nms = 300.0;           // |G| the integrator re-projects onto
-    double t0_j = 0.0;               // T at t = 0
+    double t0_j = 0.0;               // E at t = 0 (T for a rigid body)
     double work_j = 0.0;             // integral of omega^T M dt (M = -dH/dt, the moment on the body)
+    double diss_j = 0.0;             // energy dissipated in the modes (0 for a rigid body)
 };
 
 GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g0_nms);
 V3 gyrostat_omega(const GyrostatModel &m, const GyrostatState &s);
 double gyrostat_energy_j(const GyrostatModel &m, const GyrostatState &s);   // T = 1/2 omega^T J omega
+V3 gyrostat_qdot(const GyrostatModel &m, const GyrostatState &s);            // modal rates qdot_i
+// The energy check (equals T in the exact solution): E0 + int omega^T M dt - dissipated - (E - T).
+double gyrostat_energy_check_j(const GyrostatModel &m, const GyrostatState &s);
 V3 gyrostat_g_inertial(const GyrostatState &s);                               // R_IB G
 
 struct GyrostatTick {

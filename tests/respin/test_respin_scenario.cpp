@@ -122,11 +122,37 @@ SIM_TEST(bad_values_are_named)
     expect_scenario_error(base + "respin: {gyro: {noise_radps: -1.0e-5}}\n", {"'respin.gyro.noise_radps'"});
     expect_scenario_error(base + "plant: sail\n", {"'plant'", "flies plant: respin"});
     expect_scenario_error(base + "fsw: {table: nope}\n", {"'fsw.table'", "rsp_default"});
+    expect_scenario_error(base + "respin: {elastic: E3}\n", {"'respin.elastic'"});
+    // E1's fastest free-free mode is 8.2 rad/s: at Ts = 0.5 s RK4 needs h <= 0.25 / 8.2, n_sub >= 17
+    expect_scenario_error(base + "period_us: 500000\nrespin: {elastic: E1}\n", {"'respin.n_sub'", "need n_sub >= 17"});
+}
+
+// The elastic scenarios (A10, A11) and the modal sets of spec 30 §2.
+SIM_TEST(elastic_scenarios_and_modal_sets)
+{
+    const sim::Scenario e1 = sim::load_scenario(SCENARIO_DIR "/respin_e1.yaml");
+    const sim::Scenario e2 = sim::load_scenario(SCENARIO_DIR "/respin_e2.yaml");
+    EXPECT_TRUE(e1.mission_part<sim::RespinScenario>().body.elastic == "E1");
+    EXPECT_TRUE(e2.mission_part<sim::RespinScenario>().body.elastic == "E2");
+    const ref::GyrostatModel m1 = sim::respin_model(e1.mission_part<sim::RespinScenario>().body);
+    EXPECT_EQ_INT(m1.n_modes, 3);
+    EXPECT_EQ_INT(m1.modes[0].axis, 1);   // 1st out-of-plane bending couples with omega_y
+    EXPECT_NEAR(m1.modes[0].omega_radps, 1.5, 0.0);
+    EXPECT_NEAR(m1.modes[0].d_sqrtkgm, 30.0, 0.0);
+    EXPECT_NEAR(m1.modes[2].delta, 0.02, 0.0);
+    // free-free frequencies of the spec: 1.73, 4.3, 8.2 rad/s (the fastest sets the RK4 step)
+    EXPECT_NEAR(ref::gyrostat_fastest_mode_radps(m1), 8.0 / std::sqrt(1.0 - 25.0 / 670.0), 1e-12);
+    const ref::GyrostatModel m2 = sim::respin_model(e2.mission_part<sim::RespinScenario>().body);
+    EXPECT_NEAR(m2.modes[0].omega_radps, 0.8, 0.0);
+    EXPECT_NEAR(m2.modes[1].d_sqrtkgm, 25.0, 0.0);
+    const sim::Scenario r = sim::load_scenario(SCENARIO_DIR "/respin_nominal.yaml");
+    EXPECT_EQ_INT(sim::respin_model(r.mission_part<sim::RespinScenario>().body).n_modes, 0);
 }
 
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(shipped_scenarios_read), cmocka_unit_test(every_key_round_trips),
-                                       cmocka_unit_test(bad_values_are_named)};
+                                       cmocka_unit_test(bad_values_are_named),
+                                       cmocka_unit_test(elastic_scenarios_and_modal_sets)};
     return cmocka_run_group_tests_name("respin_scenario", tests, nullptr, nullptr);
 }

@@ -63,6 +63,13 @@ static rsp_params_t params(void)
     p.done_xi_q30 = 10737418;
     p.done_h_q20 = 52429;
     p.done_ticks = 3000u;
+    p.gfilt_alpha_q30 = 0;          /* G filter off */
+    p.hg_q20 = 7864320;             /* 7.5 N m s */
+    p.lambda_q28 = 13421773;        /* 0.05 */
+    p.umax_cnt = 11437;             /* 0.1745 rad/s in 2^-16 rad/s */
+    p.ms_sing_q28 = 13421773;       /* 0.05 */
+    p.rotor_nom_cnt = 153600;       /* 600 rad/s in 2^-8 rad/s */
+    p.rotor_tol_q16 = 655u;         /* 0.01 */
     p.revision = 7u;
     return p;
 }
@@ -198,6 +205,16 @@ UT_TEST(params_check_names_each_bad_field)
     p.done_xi_q30 = 0; expect_why(&p, RSP_WHY_HEALTH); p = d;
     p.done_h_q20 = 0; expect_why(&p, RSP_WHY_HEALTH); p = d;
     p.done_ticks = 0u; expect_why(&p, RSP_WHY_HEALTH); p = d;
+    p.gfilt_alpha_q30 = -1; expect_why(&p, RSP_WHY_FILTER); p = d;
+    p.gfilt_alpha_q30 = 536870913; expect_why(&p, RSP_WHY_FILTER); p = d;   /* 0.5 + 1 LSB */
+    p.gfilt_alpha_q30 = 536870912; UT_UEQ(rsp_params_check(&p, &why), FSW_OK); p = d;
+    p.hg_q20 = 0; expect_why(&p, RSP_WHY_CMG); p = d;
+    p.lambda_q28 = 0; expect_why(&p, RSP_WHY_CMG); p = d;
+    p.lambda_q28 = 268435457; expect_why(&p, RSP_WHY_CMG); p = d;   /* lambda0 > 1 */
+    p.umax_cnt = 32768; expect_why(&p, RSP_WHY_CMG); p = d;         /* beyond the int16 command */
+    p.ms_sing_q28 = 0; expect_why(&p, RSP_WHY_CMG); p = d;
+    p.rotor_nom_cnt = 0; expect_why(&p, RSP_WHY_CMG); p = d;
+    p.rotor_tol_q16 = 0u; expect_why(&p, RSP_WHY_CMG); p = d;
     p.period_us = 0u;
     p.n_stale = 0u;
     expect_why(&p, RSP_WHY_PERIOD | RSP_WHY_SENSOR);   /* every failing group is named */
@@ -983,6 +1000,64 @@ UT_TEST(deterministic_replay)
     UT_UEQ(g_s.tlm.revision, 7u);
 }
 
+/* The optional G filter (spec 30 §3.6), from the prime's last state G = (0, -2^30, 0) (g0 = 2^30 q20 =
+   1024 N m s, so g_q30 equals G_hat_q20 exactly and every expected value below is an integer formula):
+   1. the first RUN tick seeds G_hat = G_k: g is the raw direction;
+   2. a wheel-x step of H_x = 512 000 counts * I_w = 5 242 880 q20 (5 N m s): theta = omega Ts is
+      parallel to G_hat (rate about y only), so theta x G_hat = 0 and G_hat^- = G_hat; the blend moves
+      G_hat_x by alpha H_x = round(5 242 880 * 53 687 091 / 2^30) = 262 144; the Newton rescale
+      c = 2 - |G_hat| / g0 lowers G_hat_y by 2^30 (262 144 / 2^30)^2 / 2 = 32 LSB (and G_hat_x by
+      262 144 * 3e-8 < 0.01 LSB): g = (262 144, -(2^30 - 32), 0), +-1 LSB for the two roundings;
+   3. an invalid tick drops the estimate: the next valid tick is seeded from G_k again, g_x = H_x / g0.
+   With the filter off the same step gives the raw g_x = 5 242 880 at once. */
+UT_TEST(g_filter_blends_and_reseeds)
+{
+    rsp_params_t p = params();
+    const int32_t hx = 5242880;
+    rsp_in_t in;
+    p.gfilt_alpha_q30 = 53687091;   /* 0.05 */
+    prime(&p, 1u, C_Y1, W_Y1);
+    (void)step6(&p, 0, -C_Y1, 0, 0, -W_Y1, 0);
+    UT_EQ(g_s.tlm.g_q30[0], 0);
+    UT_EQ(g_s.tlm.g_q30[1], -Q30);
+    (void)step6(&p, 0, -C_Y1, 0, 512000, -W_Y1, 0);
+    UT_TRUE((g_s.tlm.g_q30[0] >= (262144 - 1)) && (g_s.tlm.g_q30[0] <= (262144 + 1)));
+    UT_TRUE((g_s.tlm.g_q30[1] >= (-Q30 + 32 - 1)) && (g_s.tlm.g_q30[1] <= (-Q30 + 32 + 1)));
+    UT_EQ(g_s.tlm.g_q30[2], 0);
+    in = input(0, -C_Y1, 0, 512000, -W_Y1, 0);
+    in.valid = 0x3Eu;   /* gyro x missing: invalid tick */
+    (void)step_in(&p, &in);
+    (void)step6(&p, 1, -C_Y1, 0, 512000, -W_Y1, 0);   /* gyro x 1 count: J_x omega_x = 2900 2^-22 = 725 q20 */
+    UT_EQ(g_s.tlm.g_q30[0], hx + 725);
+    p.gfilt_alpha_q30 = 0;
+    prime(&p, 1u, C_Y1, W_Y1);
+    (void)step6(&p, 0, -C_Y1, 0, 0, -W_Y1, 0);
+    (void)step6(&p, 0, -C_Y1, 0, 512000, -W_Y1, 0);
+    UT_EQ(g_s.tlm.g_q30[0], hx);
+}
+
+/* The G filter's propagation (spec 30 §3.6) with the rate across G: after the prime, gyro x = 4096
+   counts (omega_x = 2^-10 rad/s, J_x omega_x = 2 969 600 q20 exactly) on top of G_y = -2^30 q20, two
+   identical ticks: the first seeds G_hat = G_k, the second propagates by theta = omega Ts (theta_x =
+   9.77e-5, theta_y = -0.02844 rad) and blends back towards G_k. Expected values from the spec's
+   formulas in exact rational arithmetic (tools: Python fractions; not from this code):
+   G_hat^- = G_hat - theta x G_hat + 1/2 theta x (theta x G_hat); G_hat = G_hat^- + alpha (G_k - G_hat^-);
+   times c = 2 - |G_hat| / g0 (g0 = 2^30 q20):  g = (2 969 864.1, -1 073 737 716.6, 19 369.8) LSB.
+   Tolerance 3 LSB: theta rounded to Q1.30 (1/2 LSB times |G| = 2^30 q20: 1/2 LSB of q20), the two cross
+   products and the half (1/2 each), the blend and the rescale (1/2 each) - g = G_hat exactly here. */
+UT_TEST(g_filter_propagates_with_the_body_rate)
+{
+    rsp_params_t p = params();
+    p.gfilt_alpha_q30 = 53687091;   /* 0.05 */
+    prime(&p, 1u, C_Y1, W_Y1);
+    (void)step6(&p, 4096, -C_Y1, 0, 0, -W_Y1, 0);
+    UT_EQ(g_s.tlm.g_q30[0], 2969600);   /* seeded: the raw direction */
+    (void)step6(&p, 4096, -C_Y1, 0, 0, -W_Y1, 0);
+    UT_TRUE((g_s.tlm.g_q30[0] >= (2969864 - 3)) && (g_s.tlm.g_q30[0] <= (2969864 + 3)));
+    UT_TRUE((g_s.tlm.g_q30[1] >= (-1073737717 - 3)) && (g_s.tlm.g_q30[1] <= (-1073737717 + 3)));
+    UT_TRUE((g_s.tlm.g_q30[2] >= (19370 - 3)) && (g_s.tlm.g_q30[2] <= (19370 + 3)));
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
@@ -1010,6 +1085,8 @@ int main(void)
         UT_CASE(fx_status_zeroes_the_command),
         UT_CASE(energy_bookkeeping),
         UT_CASE(deterministic_replay),
+        UT_CASE(g_filter_blends_and_reseeds),
+        UT_CASE(g_filter_propagates_with_the_body_rate),
     };
     return UT_RUN("rsp", cases);
 }

@@ -25,6 +25,13 @@
 //   tol_M = 2^-20 + (m / 0.09) tol_g. The momentum-bound clamp (H +- h_lim) / Ts moves with H by
 //   10 * 2^-20 N m where it is active: tol_Mdel = tol_M + 10 * 2^-20.
 // * Wheel torque counts (2^-17 N m): tol_Mdel 2^17 + 1 (the rounding of either side), floor.
+// * G filter on (sequences (c), table rsp_gfilt): G_hat is state, so the per-tick roundings add up
+//   before the blend forgets them. Per tick and component: theta = omega Ts rounded (1/2 LSB of Q1.30
+//   times |G| <= 300 N m s: 0.15 LSB of q20), theta x G_hat and theta x (theta x G_hat) rounded
+//   (1/2 + 1/2), the half of the latter (1/2), the blend (1/2), the Newton rescale (1/2): <= 3 LSB
+//   (2^-20 N m s). The rotation keeps an error's size and the blend shrinks it by (1 - alpha) per tick,
+//   so the difference stays below 3 / alpha = 60 LSB; with the seed's own tol_g it adds 60 * 1024/g0
+//   LSB of Q1.30 to tol_g (0.2 LSB of q20 relative to g0 = 300: 2e-7 rad).
 // * Region, a_f, latch: exact, except where the reference |xi| lies within tol_g of a switching level
 //   (eps1 +- h_eps, eps2 +- h_eps, and eps1, eps2 on the first law tick) or |C_phi| within tol_g of 0;
 //   then either decision is accepted and the outputs are compared only if the decisions agree.
@@ -56,6 +63,7 @@ struct Twin {
     ref::RespinRef r;
     double g0_nms = 0.0;
     explicit Twin(const rsp_params_t &pp) : p(pp), r(ref::dequantise(pp)) { rsp_init(&s, &p); }
+    double filt_q20 = 0.0;   // the G filter's accumulated rounding bound, LSB of q20 (see the header)
 };
 
 struct Sample {
@@ -121,7 +129,7 @@ bool tick(Twin &t, const Sample &x, Stats &st, bool compare, bool first_law_tick
     if (!compare || o.phase != RSP_PH_RUN || t.s.phase != RSP_PH_RUN || !o.valid) { return true; }
     const rsp_tlm_t &m = t.s.tlm;
     const double g0 = o.g0_nms;
-    const double tg = tol_g_lsb(g0);
+    const double tg = tol_g_lsb(g0) + t.filt_q20 * 1024.0 / g0;
     const double tol_g = tg / kQ30;
     const bool amb_region = near_level(t, o.xi_abs, tol_g, first_law_tick) ||
                             (first_law_tick && false);
@@ -311,9 +319,50 @@ SIM_TEST(b_sequences_through_the_thresholds)
     EXPECT_TRUE(st.compared >= 11000u);
 }
 
+// (c) The G filter on (table rsp_gfilt): (b)'s walk with the filter's state carried tick to tick.
+// 90 ticks per sequence: the walk's wheels do not follow the commands, and the flight module (not
+// the reference) latches WHEEL_FAULT after 10 s = 100 such ticks.
+SIM_TEST(c_sequences_with_the_g_filter)
+{
+    std::mt19937_64 rng(11u);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    Stats st;
+    for (int c = 0; c < 130; ++c) {
+        Twin t(RSP_TBL_GFILT);
+        t.filt_q20 = 60.0;
+        const double g0 = 20.0 + 280.0 * u01(rng);
+        double d[3], h[3] = {0.0, 0.0, 0.0}, g[3];
+        unit_dir(rng, d);
+        for (int i = 0; i < 3; ++i) { g[i] = g0 * d[i]; }
+        boot(t, g, h, st);
+        for (int k = 0; k < 90; ++k) {
+            double e[3];
+            unit_dir(rng, e);
+            for (int i = 0; i < 3; ++i) { d[i] += 0.03 * e[i]; }
+            const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            for (int i = 0; i < 3; ++i) {
+                d[i] /= n;
+                g[i] = g0 * d[i];
+                h[i] = std::clamp(h[i] + 0.2 * (u01(rng) - 0.5), -std::min(5.0, g0 / 3.0), std::min(5.0, g0 / 3.0));
+            }
+            if (!tick(t, sample_of(g, h), st, true, false)) {
+                break;
+            }
+        }
+    }
+    std::printf("(c) %llu ticks, %llu compared, %llu ambiguous, %llu failed; max err / tol: g %.3f, |xi| %.3f, "
+                "M %.3f, M_del %.3f, counts %.3f\n",
+                static_cast<unsigned long long>(st.ticks), static_cast<unsigned long long>(st.compared),
+                static_cast<unsigned long long>(st.ambiguous), static_cast<unsigned long long>(st.fails),
+                st.g_lsb_max, st.xi_lsb_max, st.m_rel_max, st.mdel_rel_max, st.cnt_rel_max);
+    EXPECT_EQ_INT(st.fails, 0);
+    EXPECT_TRUE(st.compared >= 11000u);
+}
+
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(a_random_single_ticks_and_edges),
-                                       cmocka_unit_test(b_sequences_through_the_thresholds)};
+                                       cmocka_unit_test(b_sequences_through_the_thresholds),
+                                       cmocka_unit_test(c_sequences_with_the_g_filter)};
     return cmocka_run_group_tests_name("rsp_golden", tests, nullptr, nullptr);
 }

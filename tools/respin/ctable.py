@@ -16,7 +16,9 @@ FIELDS = [("period_us", "u"), ("mode", "u"), ("act_kind", "u"), ("j_q19", ""), (
           ("gmin_q20", ""), ("n_g0", "u"), ("gyro_max_cnt", ""), ("whl_max_cnt", ""), ("n_fault", "u"),
           ("n_stale", "u"), ("n_whl_est", "u"), ("outlier_q20", ""), ("outlier_rel_q16", "u"),
           ("drift_q30", ""), ("drift_sh", "u"), ("ealarm_q32", "LL"), ("done_xi_q30", ""),
-          ("done_h_q20", ""), ("done_ticks", "u")]
+          ("done_h_q20", ""), ("done_ticks", "u"), ("gfilt_alpha_q30", ""), ("hg_q20", ""),
+          ("lambda_q28", ""), ("umax_cnt", ""), ("ms_sing_q28", ""), ("rotor_nom_cnt", ""),
+          ("rotor_tol_q16", "u")]
 
 
 def _val(v, suf):
@@ -37,7 +39,16 @@ def render():
         c += ["    .%s = %s," % (f, _val(p[f], suf)) for f, suf in FIELDS]
         c += ["    .revision = 1u,", "};", ""]
     h += ["", "#endif /* FSW_RSP_TABLES_H */", ""]
-    return {"fsw/respin/rsp_tables.h": "\n".join(h), "fsw/respin/rsp_tables.c": "\n".join(c)}
+    # The host's list of (name, table): the scenario section lists and finds the boot tables through
+    # it, so a new table is one line in design.TABLES (kept out of fsw/: host C++ only).
+    x = ["// %s" % BANNER, "#ifndef SIM_RSP_TABLE_LIST_HPP", "#define SIM_RSP_TABLE_LIST_HPP", "",
+         "extern \"C\" {", "#include \"rsp_tables.h\"", "}", "", "namespace sim {", "",
+         "struct RespinNamedTable {", "    const char *name;", "    const rsp_params_t *table;", "};", "",
+         "inline constexpr RespinNamedTable kRespinTables[] = {"]
+    x += ["    {\"%s\", &%s}," % (name, sym) for name, sym, _ in design.TABLES]
+    x += ["};", "", "}  // namespace sim", "", "#endif", ""]
+    return {"fsw/respin/rsp_tables.h": "\n".join(h), "fsw/respin/rsp_tables.c": "\n".join(c),
+            "sim/respin/rsp_table_list.hpp": "\n".join(x)}
 
 
 def main(check=False):

@@ -37,7 +37,18 @@ WHEELS = dict(
     drift=0.02, drift_tau_s=100.0,
     energy_alarm_j=0.5,
     done_xi=0.01, done_h_nms=0.05, done_s=300.0,
+    gfilt_alpha=0.0,                  # G filter (§3.6): 0 = off (the rigid build), 0.05 per tick when on
+    # Gyrodine cluster (§2, §4): carried by every table so one layout serves both actuator kinds.
+    hg_nms=7.5,                       # rotor momentum h_g
+    sr_lambda=0.05,                   # singularity-robust damping lambda0
+    umax_radps=0.1745,                # gimbal-rate limit (10 deg/s)
+    ms_sing=0.05,                     # SINGULAR below this m_s
+    rotor_nom_radps=600.0,            # nominal rotor speed (h_g = I_r Omega_r, I_r = 0.0125 kg m^2)
+    rotor_tol=0.01,                   # ROTOR_FAULT beyond |Omega_r / Omega_nom - 1| (§8)
 )
+
+GIMBAL_RATE_LSB_RADPS = 2.0 ** -16   # actuator channels of the gimbal rates
+ROTOR_LSB_RADPS = 2.0 ** -8          # sensor channels of the rotor speeds
 
 
 def design(**over):
@@ -52,6 +63,7 @@ TABLES = [
     ("rsp_printed", "RSP_TBL_PRINTED", design(mode="PRINTED")),      # the printed law (A3 only)
     ("rsp_ts05", "RSP_TBL_TS05", design(period_s=0.5, g0_s=25.0)),   # A6: Ts = 0.5 s
     ("rsp_noguard", "RSP_TBL_NOGUARD", design(guard=False)),         # A7 without the guard
+    ("rsp_gfilt", "RSP_TBL_GFILT", design(gfilt_alpha=0.05)),        # A10: the G filter on
 ]
 
 
@@ -100,6 +112,13 @@ def params(d):
         "done_xi_q30": rnd(d["done_xi"] * 2 ** 30),
         "done_h_q20": rnd(d["done_h_nms"] * 2 ** 20),
         "done_ticks": rnd(d["done_s"] / ts),
+        "gfilt_alpha_q30": rnd(d["gfilt_alpha"] * 2 ** 30),
+        "hg_q20": rnd(d["hg_nms"] * 2 ** 20),
+        "lambda_q28": rnd(d["sr_lambda"] * 2 ** 28),
+        "umax_cnt": rnd(d["umax_radps"] / GIMBAL_RATE_LSB_RADPS),
+        "ms_sing_q28": rnd(d["ms_sing"] * 2 ** 28),
+        "rotor_nom_cnt": rnd(d["rotor_nom_radps"] / ROTOR_LSB_RADPS),
+        "rotor_tol_q16": rnd(d["rotor_tol"] * 2 ** 16),
     }
 
 

@@ -26,11 +26,14 @@ PAYLOAD = [("period_us", "I", 1, 1000, 1000000), ("mode", "I", 1, 0, 1), ("act_k
            ("n_whl_est", "I", 1, 1, 65535), ("outlier_q20", "i", 1, 1, I32MAX),
            ("outlier_rel_q16", "I", 1, 1, 65536), ("drift_q30", "i", 1, 1, Q30), ("drift_sh", "I", 1, 1, 20),
            ("ealarm_q32", "I", 1, 1, U32MAX), ("done_xi_q30", "i", 1, 1, Q30), ("done_h_q20", "i", 1, 1, I32MAX),
-           ("done_ticks", "I", 1, 1, 1 << 24)]
+           ("done_ticks", "I", 1, 1, 1 << 24), ("gfilt_alpha_q30", "i", 1, 0, 1 << 29),
+           ("hg_q20", "i", 1, 1, I32MAX), ("lambda_q28", "i", 1, 1, 1 << 28), ("umax_cnt", "i", 1, 1, 32767),
+           ("ms_sing_q28", "i", 1, 1, 1 << 30), ("rotor_nom_cnt", "i", 1, 1, I32MAX),
+           ("rotor_tol_q16", "I", 1, 1, 65536)]
 # value[a] + margin <= value[b] (RSP_RELS)
 RELS = [("eps1_q30", "eps2_q30", 1), ("gmin_q20", "gguard_q20", 0)]
 _MOD = iface.mission("RESPIN").iface
-LAYOUT = image_writer.Layout(_MOD.table_id, _MOD.table_layout, PAYLOAD, 128, RELS, "fsw/respin/rsp_table.c")
+LAYOUT = image_writer.Layout(_MOD.table_id, _MOD.table_layout, PAYLOAD, 156, RELS, "fsw/respin/rsp_table.c")
 NAMES = [n for n, _, _ in design.TABLES]
 
 

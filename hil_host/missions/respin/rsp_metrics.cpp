@@ -55,6 +55,9 @@ void RespinMetrics::on_truth(const gnc::sim_truth_t &t)
     if (ts <= kEarlyS + 1e-9 && gn > 0.0) {
         early.push_back(Pt{ts, {g[0] / gn, g[1] / gn, g[2] / gn}, {h[0], h[1], h[2]}});
     }
+    for (std::size_t k = 0; k < 3u; ++k) {
+        q_peak_sqrtkgm[k] = std::max(q_peak_sqrtkgm[k], std::fabs(t.extra[T::kExtraQm + k]));
+    }
     t_end_j = t.state[T::kTruthT];
     e_check_max_j = std::max(e_check_max_j, std::fabs(t.state[T::kTruthEcheck] - t.state[T::kTruthT]));
     t_last_s_ = ts;
@@ -77,7 +80,10 @@ void RespinMetrics::on_tlm(const std::vector<std::int64_t> &v, double t_s)
         a_f_ = v[i_af_];
         a_f_final = a_f_;
     }
-    re_abs_max_j = std::max(re_abs_max_j, std::fabs(static_cast<double>(v[i_re_]) * 0x1p-32));
+    const double re = static_cast<double>(v[i_re_]) * 0x1p-32;
+    re_abs_max_j = std::max(re_abs_max_j, std::fabs(re));
+    re_min_j = std::min(re_min_j, re);
+    re_max_j = std::max(re_max_j, re);
     last_ = v;
 }
 
@@ -103,6 +109,11 @@ void RespinMetrics::summary(Summary &s) const
     s.add("e_check_max_j", e_check_max_j, "%.3e");
     s.add("g_rel_err_max", g_rel_err_max, "%.3e");
     s.add("re_abs_max_j", re_abs_max_j, "%.4f");
+    s.add("re_min_j", re_min_j, "%.4f");
+    s.add("re_max_j", re_max_j, "%.4f");
+    s.add("q1_peak_sqrtkgm", q_peak_sqrtkgm[0], "%.3e");
+    s.add("q2_peak_sqrtkgm", q_peak_sqrtkgm[1], "%.3e");
+    s.add("q3_peak_sqrtkgm", q_peak_sqrtkgm[2], "%.3e");
     s.add("t_done_s", t_done_s, "%.1f");
     s.add("cmd_peak_nm", cmd_peak_nm, "%.6f");
     if (!last_.empty()) {

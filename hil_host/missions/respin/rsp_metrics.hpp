@@ -36,6 +36,8 @@ public:
     double e_check_max_j = 0.0;      // max |T0 + int omega^T M dt - T| (truth)
     double g_rel_err_max = 0.0;      // max ||G| - g0| / g0 (truth)
     double re_abs_max_j = 0.0;       // max |r_E| of the flight bookkeeping
+    double re_min_j = 0.0, re_max_j = 0.0;   // its range (modal dissipation only lowers r_E, spec 30 §8)
+    double q_peak_sqrtkgm[3] = {0.0, 0.0, 0.0};   // max |q_i| of the array modes (truth; 0 when rigid)
     double t_done_s = -1.0;          // first DONE flag
     double cmd_peak_nm = 0.0;        // max |wheel torque command| (counts -> N m)
     std::int64_t a_f_final = 0;
