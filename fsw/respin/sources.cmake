@@ -2,6 +2,7 @@
 # mission: table codec, adapter, telemetry block (generated from rsp_iface.py).
 list(APPEND FSW_SOURCES
   respin/rsp.c
+  respin/rsp_cmg.c
   respin/rsp_tables.c
   respin/rsp_table.c
   respin/rsp_mission.c
