@@ -40,6 +40,7 @@ typedef struct {
     int32_t gabs_q20;              /* |G| */
     fx_status_t st;
     uint32_t h;                    /* RSP_H_* of the step */
+    bool steered;                  /* the gyrodine steering ran this tick (s->cmg_out holds it) */
 } rsp_work_t;
 
 /* ------------------------------------------------------------------ table check */
@@ -52,7 +53,8 @@ static void check_law(const rsp_params_t *p, uint32_t *w)
     if (p->period_us == 0u) {
         *w |= RSP_WHY_PERIOD;
     }
-    if (((p->mode != RSP_MODE_NEAREST) && (p->mode != RSP_MODE_PRINTED)) || (p->act_kind != RSP_ACT_WHEELS)) {
+    if (((p->mode != RSP_MODE_NEAREST) && (p->mode != RSP_MODE_PRINTED)) ||
+        ((p->act_kind != RSP_ACT_WHEELS) && (p->act_kind != RSP_ACT_GYRODINES))) {
         *w |= RSP_WHY_MODE;
     }
     if ((p->j_q19[0] <= 0) || (p->j_q19[1] <= 0) || (p->j_q19[2] <= 0) ||
@@ -276,6 +278,50 @@ static bool intake_wheel(rsp_state_t *s, const rsp_params_t *p, const rsp_in_t *
         }
     }
     w->h_q20[i] = s->h_last_q20[i];
+    return ok;
+}
+
+/* Gyrodines: all four gimbal angles present (no propagation: a missing angle leaves H unknown), H and
+   the Jacobian from them (rsp_cmg_geom, into the state: kept off rsp_step's frame). The rotor speeds
+   are health only (spec 30 §8): a present rotor more than rotor_tol off nominal for n_fault ticks in a
+   row latches ROTOR_FAULT (a momentum the steering does not know: command zero); a missing rotor
+   sample neither extends nor breaks the run. Encoder counts beyond one turn are refused by the
+   adapter's range check; here they wrap as binary angles. */
+static bool intake_gimbals(rsp_state_t *s, const rsp_params_t *p, const rsp_in_t *in, rsp_work_t *w)
+{
+    bool ok = (in->valid & 0x3C0u) == 0x3C0u;
+    bool off = false;
+    uint32_t bam[RSP_CMG_N];
+    static const uint32_t rotor_bit[RSP_CMG_N] = {0x400u, 0x800u, 0x1000u, 0x2000u};   /* valid bits 10..13 */
+    uint32_t k;
+    for (k = 0u; k < RSP_CMG_N; k++) {
+        uint32_t rbit = rotor_bit[k];
+        /* |cnt - nom| 2^16 > tol nom, in int64: both terms < 2^31 2^16 */
+        int64_t d = (int64_t)in->rotor_cnt[k] - (int64_t)p->rotor_nom_cnt;
+        int64_t d_abs = (d < 0) ? -d : d;
+        if (((in->valid & rbit) != 0u) &&
+            ((d_abs * 65536) > ((int64_t)p->rotor_tol_q16 * (int64_t)p->rotor_nom_cnt))) {
+            off = true;
+        }
+        bam[k] = (uint32_t)in->gimbal_enc_cnt[k] << 12;   /* wraps: 2^20 counts are one turn */
+    }
+    if (off) {
+        fx_cnt_inc(&s->rotor_run);
+        if (s->rotor_run >= p->n_fault) {
+            s->rotor_fault = true;
+        }
+    } else {
+        s->rotor_run = 0u;
+    }
+    if (ok) {
+        rsp_cmg_geom(bam, p->hg_q20, &s->cmg_geom, &w->st);
+        for (k = 0u; k < RSP_N_AX; k++) {
+            w->h_q20[k] = s->cmg_geom.h_q20[k];
+        }
+    } else {
+        w->h |= RSP_H_WHL_BAD;
+        fx_cnt_inc(&s->tlm.n_whl_bad);
+    }
     return ok;
 }
 
@@ -555,6 +601,33 @@ static void law(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
     }
 }
 
+/* Gyrodines (spec 30 §4): the whole M_cmd to the singularity-robust steering (no per-axis clip;
+   the rate limit scales the four rates together). M_del is what the commanded counts deliver. */
+static void steer(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
+{
+    rsp_cmg_params_t cp;
+    uint32_t i;
+    cp.hg_q20 = p->hg_q20;
+    cp.lambda_q28 = p->lambda_q28;
+    cp.umax_cnt = p->umax_cnt;
+    cp.ms_sing_q28 = p->ms_sing_q28;
+    rsp_cmg_steer(&cp, &s->cmg_geom, s->tlm.mcmd_q24, &s->cmg_out, &w->st);
+    w->steered = true;
+    for (i = 0u; i < RSP_N_AX; i++) {
+        s->tlm.mdel_q24[i] = s->cmg_out.mdel_q24[i];
+    }
+    s->tlm.cmg_ms_q28 = s->cmg_out.ms_q28;
+    s->tlm.cmg_s_q16 = s->cmg_out.s_q16;
+    if ((s->cmg_out.flags & RSP_CMG_F_SINGULAR) != 0u) {
+        w->h |= RSP_H_SINGULAR;
+        fx_cnt_inc(&s->tlm.n_singular);
+    }
+    if ((s->cmg_out.flags & RSP_CMG_F_RATE_LIMITED) != 0u) {
+        w->h |= RSP_H_RATE_LIMITED;
+        fx_cnt_inc(&s->tlm.n_rate_limited);
+    }
+}
+
 /* Per axis: clip to M_max, clamp to the momentum bound [(H - h_lim)/Ts, (H + h_lim)/Ts] (it may
    point back once |H| > h_lim), clip to M_max again. All in int64: designed limits, no status.
    CLIP reports the first clip only; a bound beyond M_max is reported by HBOUND. */
@@ -701,9 +774,13 @@ static bool run_tick(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
         }
         target_tick(s, p, w, guard);
         law(s, p, w);
-        distribute(s, p, w);
-        if (s->have_prev) {
-            wheel_follow(s, p, w);
+        if (p->act_kind == RSP_ACT_GYRODINES) {
+            steer(s, p, w);
+        } else {
+            distribute(s, p, w);
+            if (s->have_prev) {
+                wheel_follow(s, p, w);
+            }
         }
         energy(s, p, w);
         drift(s, p, w);
@@ -743,22 +820,42 @@ static void phase_flags(const rsp_state_t *s, const rsp_params_t *p, rsp_work_t 
     }
 }
 
-/* Commands (-M_del in 2^-17 N m), the fx-status rule, telemetry. */
+/* Commands (wheels: -M_del in 2^-17 N m; gyrodines: the steering's rate counts), the fx-status
+   and fault rules, telemetry. A gimbal rate of zero holds the cluster: no moment. */
 static void finish(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w, rsp_out_t *out)
 {
-    int16_t cmd[RSP_N_AX];
+    int16_t cmd[RSP_N_AX] = {0, 0, 0};
+    int16_t rate[RSP_CMG_N] = {0, 0, 0, 0};
+    bool gyrodines = p->act_kind == RSP_ACT_GYRODINES;
     uint32_t i;
     for (i = 0u; i < RSP_N_AX; i++) {
-        cmd[i] = fx_sat16(fx_rshift_sat(-(int64_t)s->tlm.mdel_q24[i], 7u, &w->st), &w->st);
+        if (!gyrodines) {
+            cmd[i] = fx_sat16(fx_rshift_sat(-(int64_t)s->tlm.mdel_q24[i], 7u, &w->st), &w->st);
+        }
     }
-    if ((w->st != 0u) || s->wheel_fault) {
+    for (i = 0u; i < RSP_CMG_N; i++) {
+        if (w->steered) {
+            rate[i] = s->cmg_out.rate_cnt[i];
+        }
+    }
+    if ((w->st != 0u) || s->wheel_fault || s->rotor_fault) {
         for (i = 0u; i < RSP_N_AX; i++) {
             cmd[i] = 0;
             s->tlm.mdel_q24[i] = 0;
         }
+        for (i = 0u; i < RSP_CMG_N; i++) {
+            rate[i] = 0;
+        }
     }
     if (s->wheel_fault) {
         w->h |= RSP_H_WHEEL_FAULT;
+    }
+    if (s->rotor_fault) {
+        w->h |= RSP_H_ROTOR_FAULT;
+    }
+    for (i = 0u; i < RSP_CMG_N; i++) {
+        out->gimbal_rate_cnt[i] = rate[i];
+        s->tlm.cmg_rate_cnt[i] = (int32_t)rate[i];
     }
     if (w->st != 0u) {
         w->h |= RSP_H_OVERFLOW;
@@ -794,7 +891,11 @@ void rsp_step(rsp_state_t *s, const rsp_params_t *p, const rsp_in_t *in, rsp_out
         s->tlm.mdel_q24[i] = 0;
     }
     gyro_ok = intake_gyro(s, p, in, &w);
-    whl_ok = intake_wheels(s, p, in, &w);   /* every tick: a missing wheel is propagated */
+    if (p->act_kind == RSP_ACT_GYRODINES) {
+        whl_ok = intake_gimbals(s, p, in, &w);
+    } else {
+        whl_ok = intake_wheels(s, p, in, &w);   /* every tick: a missing wheel is propagated */
+    }
     ok = gyro_ok && whl_ok;
     if (ok) {
         momentum(p, &w);

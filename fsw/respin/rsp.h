@@ -1,11 +1,12 @@
 /*
  * rsp.h — respin: the switching law of spec 30 (seed 002) that brings a tumbling satellite into a
- * steady spin about its major body axis y with the weak internal moments of three reaction wheels.
+ * steady spin about its major body axis y with the weak internal moments of three reaction wheels
+ * or of a four-gyrodine cluster (table field act_kind).
  * Regions LIN / MID / FAR over |xi| = |g x f| with thresholds eps1, eps2 and hysteresis h_eps, the
  * target-latching NEAREST law (default) and the printed law PRINTED (kept to demonstrate its
  * defect, spec 30 §3.5), g0 averaged once, the low-momentum rule and the small-|G| guard (§3.6), the
- * per-axis wheel distribution with the momentum-bound clamp (§4), energy bookkeeping and the
- * health checks of §8. Gyrodines, the elastic G filter: not in this build (params check refuses).
+ * per-axis wheel distribution with the momentum-bound clamp or the gyrodine steering (§4, rsp_cmg.h),
+ * the optional G filter (§3.6), energy bookkeeping and the health checks of §8.
  *
  * Frames: B = principal body axes with the wheels locked (J diagonal, y the major axis).
  * Sign chain (spec 30 §9): M is the internal moment on the body, M = -dH/dt; the wheel motor
@@ -24,6 +25,9 @@
  *   inner term xi - k (H - H_f)    Q5.26 (D = I)
  *   moments M                      int32, LSB 2^-24 N m (suffix _q24)
  *   wheel torque command           int16 counts, 2^-17 N m (= -M, rounded once)
+ *   gimbal angle                   encoder counts of 2 pi / 2^20 rad; binary angle = cnt << 12
+ *   rotor speed                    counts of 2^-8 rad/s (health only)
+ *   gimbal rate command            int16 counts, 2^-16 rad/s (rsp_cmg_steer)
  *   energies T, W, r_E             int64, LSB 2^-32 J (suffix _q32)
  */
 #ifndef FSW_RSP_H
@@ -34,6 +38,7 @@
 #include "fx.h"
 #include "fx_rc.h"
 #include "rsp_ids.h"
+#include "rsp_cmg.h"
 
 #define RSP_N_AX        3u
 #define RSP_G0_TICKS_MAX 1024u     /* n_g0 upper bound (the sum of |G| stays in int64) */
@@ -41,7 +46,7 @@
 typedef struct {
     uint32_t period_us;        /* Ts; 100 000 (0.1 s) or 500 000 (0.5 s) */
     uint32_t mode;             /* RSP_MODE_NEAREST (default) or RSP_MODE_PRINTED */
-    uint32_t act_kind;         /* RSP_ACT_WHEELS (the only kind in this build) */
+    uint32_t act_kind;         /* RSP_ACT_WHEELS or RSP_ACT_GYRODINES */
     int32_t  j_q19[3];         /* principal inertia J_x, J_y, J_z, LSB 2^-19 kg m^2; y the largest */
     int32_t  iw_q30;           /* wheel rotor inertia I_w, Q30 kg m^2 */
     int32_t  eps1_q30;         /* eps1 (0.1) */
@@ -112,6 +117,11 @@ typedef struct {
     uint32_t n_overflow;       /* ticks with an fx status (zero command) */
     uint32_t n_clip;           /* ticks with any axis clipped to M_max */
     uint32_t n_hbound;         /* ticks with any axis at the momentum bound */
+    int32_t  cmg_rate_cnt[4];  /* gimbal rate command, 2^-16 rad/s (0 with wheels) */
+    int32_t  cmg_ms_q28;       /* m_s of the last steered tick, Q3.28 */
+    int32_t  cmg_s_q16;        /* rate scale s of the last steered tick, Q16.16 */
+    uint32_t n_singular;       /* ticks with m_s < ms_sing */
+    uint32_t n_rate_limited;   /* ticks with the gimbal rates scaled */
     uint32_t health_sticky;    /* OR of the health words since init */
     uint32_t revision;         /* table revision in use */
 } rsp_tlm_t;
@@ -142,6 +152,10 @@ typedef struct {
     bool     input_fault;      /* RSP_H_INPUT_FAULT latched (n_fault invalid ticks in a row) until rsp_init */
     uint32_t follow_run[3];    /* valid ticks in a row with wheel i off its command (spec 30 §8) */
     bool     wheel_fault;      /* RSP_H_WHEEL_FAULT latched until rsp_init: the command is zero */
+    uint32_t rotor_run;        /* valid ticks in a row with a rotor speed off nominal */
+    bool     rotor_fault;      /* RSP_H_ROTOR_FAULT latched until rsp_init: the command is zero */
+    rsp_cmg_geom_t cmg_geom;   /* the cluster's H and Jacobian of this tick (kept off the stack) */
+    rsp_cmg_out_t  cmg_out;    /* the steering's output of this tick */
     /* tlm also carries the law's running values that RESET_COUNTERS leaves alone and rsp.c reads
        back each tick: g0_q20, rho_lp_q30, w_q32, re_q32 (r_E carried over a gap), done_run. */
     rsp_tlm_t tlm;
@@ -150,12 +164,15 @@ typedef struct {
 typedef struct {
     int32_t  omega_BN_B_cnt[3];  /* gyro counts, 2^-22 rad/s */
     int32_t  whl_speed_cnt[3];   /* wheel speed counts, 2^-10 rad/s */
-    uint32_t valid;              /* bit 0..2 gyro x/y/z accepted, bit 3..5 wheel x/y/z accepted */
+    int32_t  gimbal_enc_cnt[4];  /* gimbal angle counts, 2 pi / 2^20 rad, [0, 2^20) */
+    int32_t  rotor_cnt[4];       /* rotor speed counts, 2^-8 rad/s */
+    uint32_t valid;              /* bit 0..2 gyro x/y/z, 3..5 wheel x/y/z, 6..9 gimbal 1..4, 10..13 rotor 1..4 */
     uint32_t sat;                /* same bits: accepted with the plant's SAT (full scale) bit */
 } rsp_in_t;
 
 typedef struct {
-    int16_t  whl_torque_cnt[3];  /* wheel motor torque command, 2^-17 N m (= -M_del) */
+    int16_t  whl_torque_cnt[3];  /* wheel motor torque command, 2^-17 N m (= -M_del); 0 with gyrodines */
+    int16_t  gimbal_rate_cnt[4]; /* gimbal rate command, 2^-16 rad/s; 0 with wheels */
     uint32_t health;             /* bits 0..7 fx status of the step, 8.. RSP_H_* */
 } rsp_out_t;
 

@@ -40,6 +40,12 @@ def _tlm():
                     ("clip", "ticks with an axis clipped to M_max"),
                     ("hbound", "ticks with an axis at the momentum bound")):
         f.append(Field("n_" + n, "u32", "t->n_" + n, unit="count", note=note))
+    f += [Field("cmg_rate_%d" % (k + 1), "i32", "t->cmg_rate_cnt[%du]" % k, unit="2^-16 rad/s",
+                note="gimbal rate command of gyrodine %d" % (k + 1)) for k in range(4)]
+    f += [Field("cmg_ms", "i32", "t->cmg_ms_q28", q=28, note="singularity measure m_s = sqrt det(A A^T)"),
+          Field("cmg_s", "i32", "t->cmg_s_q16", q=16, note="gimbal-rate scale s = max|beta_dot| / u_max"),
+          Field("n_singular", "u32", "t->n_singular", unit="count", note="ticks with m_s < ms_sing"),
+          Field("n_rate_limited", "u32", "t->n_rate_limited", unit="count", note="ticks with s > 1")]
     f += [Field("health_sticky", "u32", "t->health_sticky"),
           Field("revision", "u32", "t->revision", note="table revision in use")]
     return f
@@ -48,19 +54,24 @@ def _tlm():
 MODULE = Module(
     module="respin",
     prefix="rsp",
-    doc="RESPIN: respin switching law with thresholds and wheel distribution (spec 30)",
+    doc="RESPIN: respin switching law with thresholds and wheel or gyrodine distribution (spec 30)",
     tlm_type="rsp_tlm_t",
-    tlm_layout=1,
+    tlm_layout=2,
     tlm=_tlm(),
     sensors=([Chan("omega_BN_B_" + a, "2^-22 rad/s", "rate gyro %s: body rate wrt inertial, body axes" % a)
               for a in AX] +
-             [Chan("whl_speed_" + a, "2^-10 rad/s", "wheel %s speed relative to the body" % a) for a in AX]),
-    actuators=[Chan("whl_torque_cmd_" + a, "2^-17 N m", "wheel %s motor torque command (= -M_%s)" % (a, a))
-               for a in AX],
+             [Chan("whl_speed_" + a, "2^-10 rad/s", "wheel %s speed relative to the body" % a) for a in AX] +
+             [Chan("gimbal_angle_%d" % k, "2pi/2^20 rad", "gyrodine %d gimbal angle encoder (wraps at 2^20)" % k)
+              for k in range(1, 5)] +
+             [Chan("rotor_speed_%d" % k, "2^-8 rad/s", "gyrodine %d rotor speed (health)" % k) for k in range(1, 5)]),
+    actuators=([Chan("whl_torque_cmd_" + a, "2^-17 N m", "wheel %s motor torque command (= -M_%s)" % (a, a))
+                for a in AX] +
+               [Chan("gimbal_rate_cmd_%d" % k, "2^-16 rad/s", "gyrodine %d gimbal rate command" % k)
+                for k in range(1, 5)]),
     health=[
         Bit("GYRO_BAD", 0x00000100, "a gyro channel missing or at full scale: tick invalid, zero command"),
         Bit("GYRO_STALE", 0x00000200, "gyro words unchanged for n_stale ticks: tick invalid"),
-        Bit("WHL_BAD", 0x00000400, "a wheel speed missing beyond n_whl_est, or frozen: tick invalid"),
+        Bit("WHL_BAD", 0x00000400, "a wheel speed missing beyond n_whl_est or frozen, or a gimbal angle missing: tick invalid"),
         Bit("WHL_EST", 0x00000800, "a wheel momentum propagated from the last command (ESTIMATED)"),
         Bit("OUTLIER", 0x00001000, "||G| - g0| beyond the gate: tick invalid"),
         Bit("INPUT_FAULT", 0x00002000, "n_fault invalid ticks in a row (latched until re-entry)"),
@@ -74,10 +85,13 @@ MODULE = Module(
         Bit("DONE", 0x00200000, "|xi|, C_phi > 0 and |H - H_f| in tolerance for done_ticks"),
         Bit("G0_WAIT", 0x00400000, "g0 being averaged: zero command"),
         Bit("WHEEL_FAULT", 0x00800000, "a wheel off its command by > 0.03 N m for 10 s (latched): zero command"),
+        Bit("SINGULAR", 0x01000000, "gyrodines: m_s < ms_sing (telemetry only: the damped inverse passes through)"),
+        Bit("RATE_LIMITED", 0x02000000, "gyrodines: the gimbal rates scaled by 1/s (direction kept)"),
+        Bit("ROTOR_FAULT", 0x04000000, "gyrodines: a rotor speed off nominal by > rotor_tol for n_fault ticks (latched): zero command"),
     ],
     why=[
         Bit("PERIOD", 0x001, "period (zero, or not the executive's)"),
-        Bit("MODE", 0x002, "mode or actuator kind unknown (this build: wheels only)"),
+        Bit("MODE", 0x002, "mode or actuator kind unknown"),
         Bit("INERTIA", 0x004, "J not positive, or J_y not the largest (principal axes, gamma_p = 0)"),
         Bit("THRESH", 0x008, "0 < h_eps, eps1 > 2 h_eps, eps2 - eps1 > 2 h_eps, eps2 + h_eps < 1"),
         Bit("GAIN", 0x010, "m, k, M*, M_max positive and m = M_max / eps1 within 1 %"),

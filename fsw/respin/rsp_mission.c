@@ -1,8 +1,11 @@
 /*
  * rsp_mission.c — respin's adapter to the executive (RESPIN; fsw/app/fsw_mission.h).
  *
- * Channel map: sensors 0..2 gyro x, y, z (2^-22 rad/s), 3..5 wheel speed x, y, z (2^-10 rad/s);
- * actuators 0..2 wheel motor torque x, y, z (2^-17 N m), safe value 0.
+ * Channel map: sensors 0..2 gyro x, y, z (2^-22 rad/s), 3..5 wheel speed x, y, z (2^-10 rad/s),
+ * 6..9 gimbal angle 1..4 (2 pi / 2^20 rad, [0, 2^20)), 10..13 rotor speed 1..4 (2^-8 rad/s);
+ * actuators 0..2 wheel motor torque x, y, z (2^-17 N m), 3..6 gimbal rate 1..4 (2^-16 rad/s), safe
+ * value 0 (a held cluster). The table's act_kind says which set flies; the other set's channels are
+ * read and ignored (the plant publishes the superset).
  *
  * The law runs only in the mission mode and restarts (rsp_init: g0 averaged again) on every
  * entry; outside it the wheels hold zero torque. The module judges its inputs itself (spec 30 §8:
@@ -17,13 +20,16 @@
  */
 #include "rsp_mission.h"
 
-#define RSP_FAULT_BITS (RSP_H_INPUT_FAULT | RSP_H_WHEEL_FAULT | RSP_H_ENERGY_ALARM | RSP_H_OVERFLOW | FX_ST_MASK)
+#define RSP_FAULT_BITS (RSP_H_INPUT_FAULT | RSP_H_WHEEL_FAULT | RSP_H_ROTOR_FAULT | RSP_H_ENERGY_ALARM | \
+                        RSP_H_OVERFLOW | FX_ST_MASK)
+#define RSP_ENC_MAX    ((int32_t)1048575)    /* gimbal encoder: 2^20 counts per turn */
+#define RSP_ROTOR_MAX  ((int32_t)16777216)   /* rotor speed: 2^24 counts = 65 536 rad/s, far above any rotor */
 
 /* The generated total is the header, the actuator counts, the health word and the block. */
 FX_STATIC_ASSERT(rsp_mis_sa_tlm,
                  RSP_TLM_TOTAL_BYTES == (FSW_TLM_HEAD_BYTES + (4u * RSP_N_ACT) + 4u + RSP_TLM_BYTES));
 
-static const int32_t RSP_SAFE_ACT[RSP_N_ACT] = {0, 0, 0};
+static const int32_t RSP_SAFE_ACT[RSP_N_ACT] = {0, 0, 0, 0, 0, 0, 0};
 
 const fsw_mis_desc_t RSP_MIS_DESC = {
     RSP_N_SENS, RSP_N_ACT, 0u, RSP_FAULT_BITS,
@@ -89,6 +95,12 @@ void rsp_mis_ranges(const rsp_mis_t *b, fsw_range_t *r)
         r[3u + i].min = (w >= 0) ? -w : 1;
         r[3u + i].max = w;
     }
+    for (i = 0u; i < 4u; i++) {
+        r[6u + i].min = 0;
+        r[6u + i].max = RSP_ENC_MAX;
+        r[10u + i].min = 0;
+        r[10u + i].max = RSP_ROTOR_MAX;
+    }
 }
 
 void rsp_mis_enter(rsp_mis_t *b)
@@ -110,6 +122,8 @@ static void rsp_reset_counters(rsp_tlm_t *t)
     t->n_overflow = 0u;
     t->n_clip = 0u;
     t->n_hbound = 0u;
+    t->n_singular = 0u;
+    t->n_rate_limited = 0u;
     t->health_sticky = 0u;
 }
 
@@ -124,11 +138,18 @@ uint32_t rsp_mis_step(rsp_mis_t *b, const fsw_acc_t *acc, int32_t *act)
         in.omega_BN_B_cnt[i] = acc->cnt[i];
         in.whl_speed_cnt[i] = acc->cnt[3u + i];
     }
-    in.valid = acc->valid & 0x3Fu;
-    in.sat = acc->sat & 0x3Fu;
+    for (i = 0u; i < 4u; i++) {
+        in.gimbal_enc_cnt[i] = acc->cnt[6u + i];
+        in.rotor_cnt[i] = acc->cnt[10u + i];
+    }
+    in.valid = acc->valid & 0x3FFFu;
+    in.sat = acc->sat & 0x3FFFu;
     rsp_step(&b->s, &b->p, &in, &b->o);
     for (i = 0u; i < 3u; i++) {
         act[i] = (int32_t)b->o.whl_torque_cnt[i];
+    }
+    for (i = 0u; i < 4u; i++) {
+        act[3u + i] = (int32_t)b->o.gimbal_rate_cnt[i];
     }
     return b->o.health;
 }

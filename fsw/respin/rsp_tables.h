@@ -9,5 +9,6 @@ extern const rsp_params_t RSP_TBL_PRINTED;   /* rsp_printed */
 extern const rsp_params_t RSP_TBL_TS05;   /* rsp_ts05 */
 extern const rsp_params_t RSP_TBL_NOGUARD;   /* rsp_noguard */
 extern const rsp_params_t RSP_TBL_GFILT;   /* rsp_gfilt */
+extern const rsp_params_t RSP_TBL_CMG;   /* rsp_cmg */
 
 #endif /* FSW_RSP_TABLES_H */

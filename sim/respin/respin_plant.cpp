@@ -20,9 +20,52 @@ void RespinPlant::reset(const Scenario &scn)
     applied_nm_ = {{0.0, 0.0, 0.0}};
     clip_on_ = {{false, false, false}};
     cut_on_ = {{false, false, false}};
+    rate_cmd_ = {{0.0, 0.0, 0.0, 0.0}};
+    rate_applied_ = {{0.0, 0.0, 0.0, 0.0}};
+    rate_clip_on_ = {{false, false, false, false}};
+    max_rate_radps_ = 0.0;
+    moment_nm_ = {{0.0, 0.0, 0.0}};
+    rotor_fault_us_ = (model_.cmg && b_.rotor_fault) ? static_cast<std::int64_t>(std::llround(b_.rotor_fault_t_s * 1e6)) : -1;
+    rotor_fault_done_ = false;
     noise_ = Rng(b_.gyro_seed, 0u);
     events_.clear();
     reason_.clear();
+    rotor_fault_due();   // a fault at t_s = 0 is there from the start
+}
+
+void RespinPlant::rotor_fault_due()
+{
+    if (rotor_fault_us_ < 0 || rotor_fault_done_ || utime_us() < rotor_fault_us_) {
+        return;
+    }
+    const std::size_t p = b_.rotor_fault_index;
+    ref::gyrostat_set_rotor_scale(model_, s_, p, b_.rotor_fault_scale);
+    rotor_fault_done_ = true;
+    TruthEvent e;
+    e.utime_us = utime_us();
+    e.seq = k_;
+    e.kind = "ROTOR_FAULT";
+    e.channel = static_cast<int>(kRespinChRotor + p);
+    e.requested = model_.hg_nms;                              // nominal rotor momentum
+    e.applied = b_.rotor_fault_scale * model_.hg_nms;         // from now on
+    events_.push_back(e);
+}
+
+std::int32_t gimbal_encoder_counts(double beta_rad)
+{
+    constexpr double kTwoPi = 6.283185307179586476925286766559;
+    if (!std::isfinite(beta_rad)) {
+        return 0;
+    }
+    double b = std::fmod(beta_rad, kTwoPi);   // exact; (-2 pi, 2 pi)
+    if (b < 0.0) {
+        b += kTwoPi;
+    }
+    std::int64_t c = std::llround(b / kRespinGimbalLsbRad);   // [0, 2^20]
+    if (c >= static_cast<std::int64_t>(kRespinGimbalCounts)) {
+        c -= static_cast<std::int64_t>(kRespinGimbalCounts);
+    }
+    return static_cast<std::int32_t>(c);
 }
 
 std::int64_t RespinPlant::utime_us() const
@@ -45,14 +88,26 @@ SensorFrame RespinPlant::sense()
         f.cnt[i] = counts_from_si(meas, kRespinRateLsbRadps, kRespinGyroMaxCnt, &f.status[i]);
     }
     for (std::size_t i = 0; i < 3u; ++i) {
-        const double om = s_.h_nms[i] / model_.iw_kgm2;
+        // No wheels with gyrodines fitted: speed 0, status OK (the channel is always published).
+        const double om = model_.cmg ? 0.0 : s_.h_nms[i] / model_.iw_kgm2;
         f.cnt[3u + i] = counts_from_si(om, kRespinWhlSpeedLsbRadps, kRespinWhlSpeedMaxCnt, &f.status[3u + i]);
+    }
+    for (std::size_t p = 0; p < 4u; ++p) {
+        // With wheels s_.beta_rad stays at the null configuration (a locked cluster's encoders).
+        f.cnt[kRespinChGimbal + p] = gimbal_encoder_counts(s_.beta_rad[p]);
+        f.status[kRespinChGimbal + p] = 0u;
+        const double om = model_.cmg ? model_.rotor_scale[p] * b_.cmg_rotor_speed_radps : 0.0;
+        f.cnt[kRespinChRotor + p] = counts_from_si(om, kRespinRotorLsbRadps, kRespinRotorMaxCnt, &f.status[kRespinChRotor + p]);
     }
     return f;
 }
 
 void RespinPlant::apply(const ActuatorCmd &cmd)
 {
+    if (model_.cmg) {
+        apply_cmg(cmd);
+        return;
+    }
     for (std::size_t i = 0; i < 3u; ++i) {
         // A command without its channel is applied as zero torque: the plant never guesses.
         const double req = (cmd.n_ch > i) ? static_cast<double>(cmd.cnt[i]) * kRespinTorqueLsbNm : 0.0;
@@ -74,10 +129,46 @@ void RespinPlant::apply(const ActuatorCmd &cmd)
     }
 }
 
+void RespinPlant::apply_cmg(const ActuatorCmd &cmd)
+{
+    for (std::size_t p = 0; p < 4u; ++p) {
+        const std::size_t ch = kRespinActGimbalRate + p;
+        // A command without its channel holds the gimbal (rate 0).
+        const double req = (cmd.n_ch > ch) ? static_cast<double>(cmd.cnt[ch]) * kRespinGimbalRateLsbRadps : 0.0;
+        rate_cmd_[p] = req;   // ref::gyrostat_tick_cmg clips to +-u_max
+        // The flight's limit 11 437 counts is 0.174515 rad/s, within one count above u_max = 0.1745:
+        // quantisation, clipped without an event. Beyond one count it is a clip, logged on entry.
+        const bool clip = std::fabs(req) > model_.umax_radps + kRespinGimbalRateLsbRadps;
+        if (clip && !rate_clip_on_[p]) {
+            TruthEvent e;
+            e.utime_us = utime_us();
+            e.seq = cmd.seq;
+            e.kind = "GIMBAL_RATE_CLIP";
+            e.channel = static_cast<int>(ch);
+            e.requested = req;
+            e.applied = std::copysign(model_.umax_radps, req);
+            events_.push_back(e);
+        }
+        rate_clip_on_[p] = clip;
+    }
+}
+
 RunState RespinPlant::propagate()
 {
     if (!reason_.empty()) {
         return RunState::Diverged;
+    }
+    if (model_.cmg) {
+        const ref::GyrostatTick t =
+            ref::gyrostat_tick_cmg(model_, s_, rate_cmd_, static_cast<double>(period_us_) * 1e-6, b_.n_sub);
+        rate_applied_ = t.rate_radps;
+        moment_nm_ = t.moment_nm;
+        for (std::size_t p = 0; p < 4u; ++p) {
+            max_rate_radps_ = std::max(max_rate_radps_, std::fabs(t.rate_radps[p]));
+        }
+        ++k_;
+        rotor_fault_due();
+        return check();
     }
     const ref::GyrostatTick t =
         ref::gyrostat_tick(model_, s_, cmd_nm_, static_cast<double>(period_us_) * 1e-6, b_.n_sub);
@@ -112,6 +203,12 @@ RunState RespinPlant::check() const
 
 std::vector<std::string> RespinPlant::truth_names() const
 {
+    if (model_.cmg) {
+        return {"omega_BN_B_x_radps", "omega_BN_B_y_radps", "omega_BN_B_z_radps", "h_cmg_x_nms", "h_cmg_y_nms",
+                "h_cmg_z_nms", "g_B_x_nms", "g_B_y_nms", "g_B_z_nms", "q_BI_w", "q_BI_x", "q_BI_y", "q_BI_z", "t_body_j",
+                "e_check_j", "xi_abs", "m_cmg_x_nm", "m_cmg_y_nm", "m_cmg_z_nm", "g0_nms", "q_mode1_sqrtkgm",
+                "q_mode2_sqrtkgm", "q_mode3_sqrtkgm", "g_y_rel"};
+    }
     return {"omega_BN_B_x_radps", "omega_BN_B_y_radps", "omega_BN_B_z_radps", "h_whl_x_nms", "h_whl_y_nms",
             "h_whl_z_nms", "g_B_x_nms", "g_B_y_nms", "g_B_z_nms", "q_BI_w", "q_BI_x", "q_BI_y", "q_BI_z", "t_body_j",
             "e_check_j", "xi_abs", "tau_whl_x_nm", "tau_whl_y_nm", "tau_whl_z_nm", "g0_nms", "q_mode1_sqrtkgm",
@@ -138,7 +235,7 @@ void RespinPlant::truth_message(std::array<double, 16> &state, std::array<double
         state[i] = w[i];
         state[3u + i] = s_.h_nms[i];
         state[6u + i] = s_.g_nms[i];
-        extra[i] = applied_nm_[i];
+        extra[i] = model_.cmg ? moment_nm_[i] : applied_nm_[i];
     }
     for (std::size_t i = 0; i < 4u; ++i) {
         state[9u + i] = s_.q_bi[i];
@@ -161,13 +258,17 @@ ref::RespinRefIn respin_ref_input(const SensorFrame &f)
     ref::RespinRefIn in;
     in.valid = 0u;
     in.sat = 0u;
-    for (std::size_t i = 0; i < 6u; ++i) {
+    for (std::size_t i = 0; i < kRespinSensorChannels; ++i) {
         const std::uint32_t bit = 1u << i;
         const std::int32_t c = i < f.n_ch ? f.cnt[i] : 0;
-        if (i < 3u) {
+        if (i < kRespinChWhlSpeed) {
             in.gyro_cnt[i] = c;
+        } else if (i < kRespinChGimbal) {
+            in.whl_cnt[i - kRespinChWhlSpeed] = c;
+        } else if (i < kRespinChRotor) {
+            in.gimbal_cnt[i - kRespinChGimbal] = c;
         } else {
-            in.whl_cnt[i - 3u] = c;
+            in.rotor_cnt[i - kRespinChRotor] = c;
         }
         const std::uint8_t st = i < f.n_ch ? f.status[i] : kStatusStale;
         if ((st & (kStatusStale | kStatusNonFinite)) == 0u) {
@@ -204,6 +305,9 @@ RespinLoopRun run_respin_reference(const Scenario &scn, const rsp_params_t &p, c
         for (std::size_t i = 0; i < 3u; ++i) {
             cmd.cnt[i] = ref::torque_counts(out.whl_torque_nm[i]);
             run.max_torque_cmd_nm = std::max(run.max_torque_cmd_nm, std::fabs(static_cast<double>(cmd.cnt[i]) * kRespinTorqueLsbNm));
+        }
+        for (std::size_t j = 0; j < 4u; ++j) {
+            cmd.cnt[kRespinActGimbalRate + j] = out.gimbal_rate_cnt[j];
         }
         plant.apply(cmd);
         const RunState rs = plant.propagate();
@@ -265,6 +369,7 @@ RespinLoopRun run_respin_reference(const Scenario &scn, const rsp_params_t &p, c
         run.omega_err_end_radps = std::sqrt(w[0] * w[0] + (w[1] - wf) * (w[1] - wf) + w[2] * w[2]);
     }
     run.t_settle_s = in_conv ? conv_since_s : -1.0;
+    run.max_gimbal_rate_radps = plant.max_gimbal_rate_radps();
     run.a_f_end = out.a_f;
     run.region_end = out.region;
     run.g0_ref_nms = law.g0_nms();

@@ -27,6 +27,41 @@ void parse_wheel(const YAML::Node &w, const Reader &r, RespinSetup &m)
     if (w["viscous_nmps"]) { m.viscous_nmps = r.number(w["viscous_nmps"], "respin.wheel.viscous_nmps", 0.0, 1e-2); }
 }
 
+// Four numbers (the gyrodines' beta0), read like Reader::triple.
+std::array<double, 4> quad(const YAML::Node &n, const Reader &r, const std::string &key, double lo, double hi)
+{
+    if (!n.IsSequence() || n.size() != 4u) {
+        r.fail(key, n, "must be a list of four numbers [b1, b2, b3, b4]");
+    }
+    return {{r.number(n[0], key + "[0]", lo, hi), r.number(n[1], key + "[1]", lo, hi), r.number(n[2], key + "[2]", lo, hi),
+             r.number(n[3], key + "[3]", lo, hi)}};
+}
+
+void parse_cmg(const YAML::Node &c, const Reader &r, RespinSetup &b)
+{
+    constexpr double kTwoPi = 6.283185307179586476925286766559;
+    r.check_keys(c, "respin.cmg", {"hg_nms", "umax_radps", "beta0_rad", "rotor_speed_radps", "rotor_fault"});
+    if (c["hg_nms"]) { b.cmg_hg_nms = r.number(c["hg_nms"], "respin.cmg.hg_nms", 0.1, 100.0); }
+    if (c["umax_radps"]) { b.cmg_umax_radps = r.number(c["umax_radps"], "respin.cmg.umax_radps", 1e-3, 1.0); }
+    if (c["beta0_rad"]) { b.cmg_beta0_rad = quad(c["beta0_rad"], r, "respin.cmg.beta0_rad", -kTwoPi, kTwoPi); }
+    // The rotor-speed counts (2^-8 rad/s, up to 1.5 x nominal with a fault) stay below full scale.
+    if (c["rotor_speed_radps"]) {
+        b.cmg_rotor_speed_radps = r.number(c["rotor_speed_radps"], "respin.cmg.rotor_speed_radps", 1.0, 20000.0);
+    }
+    if (const YAML::Node f = c["rotor_fault"]) {
+        r.check_keys(f, "respin.cmg.rotor_fault", {"t_s", "index", "scale"});
+        for (const char *k : {"t_s", "index", "scale"}) {
+            if (!f[k]) {
+                r.fail(std::string("respin.cmg.rotor_fault.") + k, f, "missing: a rotor fault needs t_s, index and scale");
+            }
+        }
+        b.rotor_fault = true;
+        b.rotor_fault_t_s = r.number(f["t_s"], "respin.cmg.rotor_fault.t_s", 0.0, 1e7);
+        b.rotor_fault_index = static_cast<std::uint32_t>(r.integer(f["index"], "respin.cmg.rotor_fault.index", 0, 3));
+        b.rotor_fault_scale = r.number(f["scale"], "respin.cmg.rotor_fault.scale", 0.0, 1.5);
+    }
+}
+
 void parse_gyro(const YAML::Node &g, const Reader &r, RespinSetup &b)
 {
     r.check_keys(g, "respin.gyro", {"noise_radps", "bias_radps", "scale_ppm", "seed"});
@@ -34,6 +69,23 @@ void parse_gyro(const YAML::Node &g, const Reader &r, RespinSetup &b)
     if (g["bias_radps"]) { b.gyro_bias_radps = r.triple(g["bias_radps"], "respin.gyro.bias_radps", -1e-2, 1e-2); }
     if (g["scale_ppm"]) { b.gyro_scale_ppm = r.triple(g["scale_ppm"], "respin.gyro.scale_ppm", -1e4, 1e4); }
     if (g["seed"]) { b.gyro_seed = r.unsigned64(g["seed"], "respin.gyro.seed"); }
+}
+
+// A wheel table flown against gyrodines (or the reverse) commands an actuator that is not there:
+// refused for the built-in tables (a table_file is the flight's to judge).
+void check_act_kind(const YAML::Node &at, const Reader &r, const Scenario &s)
+{
+    if (!s.fsw.table_file.empty()) {
+        return;
+    }
+    const bool cmg = s.mission_part<RespinScenario>().body.gyrodines;
+    for (const RespinNamedTable &t : kRespinTables) {
+        if (s.fsw.table == t.name && (t.table->act_kind == RSP_ACT_GYRODINES) != cmg) {
+            r.fail("respin.actuator", at,
+                   std::string("is ") + (cmg ? "gyrodines" : "wheels") + " but table '" + s.fsw.table + "' flies " +
+                       (cmg ? "wheels" : "gyrodines"));
+        }
+    }
 }
 
 class RespinSection final : public MissionSection {
@@ -64,10 +116,12 @@ public:
         }
         const YAML::Node m = root["respin"];
         if (!m) {
+            const YAML::Node f = root["fsw"];
+            check_act_kind((f && f.IsMap() && f["table"]) ? f["table"] : root, r, s);
             return;
         }
         r.check_keys(m, "respin", {"g0_nms", "g_dir", "g_dir_seed", "inertia_kgm2", "omega_max_radps", "n_sub", "wheel",
-                                   "gyro", "elastic"});
+                                   "gyro", "elastic", "actuator", "cmg"});
         if (m["g0_nms"]) { b.g0_nms = r.number(m["g0_nms"], "respin.g0_nms", 1e-3, 1000.0); }
         if (m["g_dir"] && m["g_dir_seed"]) {
             r.fail("respin.g_dir_seed", m["g_dir_seed"], "give g_dir or g_dir_seed, not both");
@@ -105,9 +159,22 @@ public:
                            std::to_string(static_cast<int>(std::ceil(wmax * static_cast<double>(s.period_us) * 1e-6 / 0.25))));
             }
         }
+        if (m["actuator"]) {
+            b.gyrodines = r.choice(m["actuator"], "respin.actuator", {"wheels", "gyrodines"}) == "gyrodines";
+        }
         if (const YAML::Node w = m["wheel"]) {
+            if (b.gyrodines) {
+                r.fail("respin.wheel", w, "the wheels are not fitted (respin.actuator: gyrodines)");
+            }
             parse_wheel(w, r, b);
         }
+        if (const YAML::Node c = m["cmg"]) {
+            if (!b.gyrodines) {
+                r.fail("respin.cmg", c, "the gyrodines are not fitted (needs respin.actuator: gyrodines)");
+            }
+            parse_cmg(c, r, b);
+        }
+        check_act_kind(m["actuator"] ? m["actuator"] : m, r, s);
         if (const YAML::Node g = m["gyro"]) {
             parse_gyro(g, r, b);
         }
@@ -147,6 +214,12 @@ ref::GyrostatModel respin_model(const RespinSetup &b)
     m.coulomb_nm = b.coulomb_nm;
     m.viscous_nmps = b.viscous_nmps;
     ref::gyrostat_set_modes(m, b.elastic);
+    m.cmg = b.gyrodines;
+    m.hg_nms = b.cmg_hg_nms;
+    m.umax_radps = b.cmg_umax_radps;
+    m.beta0_rad = b.cmg_beta0_rad;
+    // Nominal rotors at t = 0; the plant applies rotor_fault when its time comes.
+    m.rotor_scale = {{1.0, 1.0, 1.0, 1.0}};
     return m;
 }
 

@@ -1,5 +1,7 @@
 #include "respin/rsp_ref.hpp"
 
+#include "respin/rsp_cmg_ref.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -193,7 +195,27 @@ RespinRefOut RespinRef::step(const RespinRefIn &in)
         w[i] = static_cast<double>(in.gyro_cnt[i]) * kRspGyroLsbRadps;
     }
     bool whl_ok = true;
-    for (std::size_t i = 0; i < 3u; ++i) {
+    const bool cmg = t.act_kind == RSP_ACT_GYRODINES;
+    CmgGeom geom;
+    if (cmg) {
+        // Gyrodines: all four gimbal angles or an invalid tick; the rotors are health only (§8):
+        // off nominal by more than rotor_tol for n_fault ticks in a row latches ROTOR_FAULT.
+        whl_ok = (in.valid & 0x3C0u) == 0x3C0u;
+        std::array<double, 4> beta{};
+        bool off = false;
+        for (std::size_t k = 0; k < 4u; ++k) {
+            beta[k] = cmg_beta_rad(static_cast<std::uint32_t>(in.gimbal_cnt[k]));
+            const double d = static_cast<double>(in.rotor_cnt[k]) - static_cast<double>(t.rotor_nom_cnt);
+            if ((in.valid & (1u << (10u + k))) != 0u && std::fabs(d) > t.rotor_tol * static_cast<double>(t.rotor_nom_cnt)) {
+                off = true;
+            }
+        }
+        rotor_run_ = off ? rotor_run_ + 1u : 0u;
+        rotor_fault_ = rotor_fault_ || rotor_run_ >= t.n_fault;
+        geom = cmg_geom(beta, t.hg_nms);
+        h = geom.h_nms;
+    }
+    for (std::size_t i = 0; i < 3u && !cmg; ++i) {
         const std::uint32_t bit = 1u << (3u + i);
         const std::int64_t c = in.whl_cnt[i];
         const bool ok = (in.valid & bit) != 0u && (in.sat & bit) == 0u && c <= t.whl_max_cnt && -c <= t.whl_max_cnt;
@@ -291,7 +313,30 @@ RespinRefOut RespinRef::step(const RespinRefIn &in)
             o.g[i] = gsrc[i] * r0_pnms_;
         }
         o.rho = gabs * r0_pnms_ - 1.0;
-        const RespinLawOut lo = rsp_law_tick(t, law_, o.g, h);
+        RespinLawOut lo = rsp_law_tick(t, law_, o.g, h);
+        if (cmg) {
+            // The whole M_cmd to the steering (§4): no per-axis clip, no momentum clamp.
+            CmgTable ct;
+            ct.hg_nms = t.hg_nms;
+            ct.lambda = t.sr_lambda;
+            ct.umax_cnt = t.umax_cnt;
+            ct.umax_radps = static_cast<double>(t.umax_cnt) * kCmgRateLsbRadps;
+            ct.ms_sing = t.ms_sing;
+            const CmgSteer st = cmg_steer(ct, geom, lo.mcmd_nm);
+            lo.mdel_nm = st.mdel_nm;
+            lo.whl_torque_nm = {{0.0, 0.0, 0.0}};
+            lo.clip = {{false, false, false}};
+            lo.hbound = {{false, false, false}};
+            o.gimbal_rate_cnt = st.rate_cnt;
+            o.ms = st.ms;
+            o.s_rate = st.s;
+            if ((st.flags & RSP_CMG_F_SINGULAR) != 0u) {
+                o.health |= RSP_H_SINGULAR;
+            }
+            if ((st.flags & RSP_CMG_F_RATE_LIMITED) != 0u) {
+                o.health |= RSP_H_RATE_LIMITED;
+            }
+        }
         if (lo.switched) {
             ++n_switch_;
         }
@@ -351,6 +396,13 @@ RespinRefOut RespinRef::step(const RespinRefIn &in)
             o.g = {{gv[0] * r0_pnms_, gv[1] * r0_pnms_, gv[2] * r0_pnms_}};
         }
     }
+    if (rotor_fault_) {
+        // ROTOR_FAULT (§8): a momentum the steering does not know; command zero from then on.
+        o.health |= RSP_H_ROTOR_FAULT;
+        o.gimbal_rate_cnt = {{0, 0, 0, 0}};
+        o.mdel_nm = {{0.0, 0.0, 0.0}};
+        o.whl_torque_nm = {{0.0, 0.0, 0.0}};
+    }
     mdel_last_nm_ = o.mdel_nm;
     o.region = law_.region;
     o.a_f = law_.a_f;
@@ -382,11 +434,58 @@ std::int32_t torque_counts(double torque_nm)
 namespace {
 
 // Integrator state: G (0..2), H (3..5), q (6..9), work (10), modal q (11..13), modal p (14..16),
-// dissipated energy (17). Modal slots of a rigid model stay zero.
-constexpr std::size_t kNy = 18u;
-constexpr std::size_t kYq = 11u, kYp = 14u, kYdiss = 17u;
+// dissipated energy (17), gimbal angles beta (18..21). Modal slots of a rigid model stay zero, the
+// gimbal slots of a wheel model keep their value (zero derivative); every slot is combined on its
+// own, so the added slots leave the arithmetic of the others, and the wheel path, bit for bit as
+// it was. With gyrodines the H slots carry H(beta), recomputed after every step.
+constexpr std::size_t kNy = 22u;
+constexpr std::size_t kYq = 11u, kYp = 14u, kYdiss = 17u, kYbeta = 18u;
 constexpr double kPi = 3.14159265358979323846;
 using Y = std::array<double, kNy>;
+using A4 = std::array<double, 4>;
+
+// The gyrodine cluster at gimbal angles beta (spec 30 §2): H and dH/dt for the held gimbal rates,
+// both from the one geometry source cmg_geom (rsp_cmg_ref), which takes one h_g for the four
+// rotors:  H = cmg_geom(beta, h_g).H + sum_p (k_p - 1) h_g u_p(beta_p),
+//          dH/dt = h_g sum_p k_p a_p(beta_p) beta_dot_p      (a_p: column p of Ahat).
+// The unit rotor direction u_p needs no second formula: a single-gimbal unit turns its rotor about
+// the gimbal axis g_p, so a_p(beta) = g_p x u_p(beta) is u_p turned a quarter turn forward and
+// u_p(beta) = a_p(beta - pi/2), column p of cmg_geom(beta - pi/2, 1).ahat (e.g. p = 1:
+// a_1 = (0, -sin, cos), at beta - pi/2: (0, cos beta, sin beta) = u_1). That term is only formed
+// when a rotor is off nominal, so a nominal cluster's H is cmg_geom's exactly.
+struct Cluster {
+    V3 h{{0.0, 0.0, 0.0}};
+    V3 hdot{{0.0, 0.0, 0.0}};
+};
+
+Cluster cluster_at(const GyrostatModel &m, const double *beta, const A4 &rate)
+{
+    const A4 b{{beta[0], beta[1], beta[2], beta[3]}};
+    const CmgGeom g = cmg_geom(b, m.hg_nms);
+    Cluster c;
+    c.h = g.h_nms;
+    bool nominal = true;
+    for (std::size_t p = 0; p < 4u; ++p) {
+        nominal = nominal && !(m.rotor_scale[p] < 1.0 || m.rotor_scale[p] > 1.0);
+    }
+    if (!nominal) {
+        const double q = 0.5 * kPi;
+        const CmgGeom u = cmg_geom({{b[0] - q, b[1] - q, b[2] - q, b[3] - q}}, 1.0);
+        for (std::size_t i = 0; i < 3u; ++i) {
+            for (std::size_t p = 0; p < 4u; ++p) {
+                c.h[i] += (m.rotor_scale[p] - 1.0) * m.hg_nms * u.ahat[i][p];
+            }
+        }
+    }
+    for (std::size_t i = 0; i < 3u; ++i) {
+        double a = 0.0;
+        for (std::size_t p = 0; p < 4u; ++p) {
+            a += g.ahat[i][p] * (m.rotor_scale[p] * rate[p]);
+        }
+        c.hdot[i] = m.hg_nms * a;
+    }
+    return c;
+}
 
 // Per body axis: J - D D^T and the modes' momentum D p on it (one mode per axis at most).
 struct AxisModal {
@@ -429,11 +528,25 @@ struct Deriv {
     const GyrostatModel &m;
     AxisModal am;
     V3 tau;                                  // motor torque after the motor limit (ZOH)
+    A4 rate;                                 // gyrodines: gimbal rates after the clip (ZOH)
     std::array<bool, 3> *cut;
 
     Y operator()(const Y &y) const
     {
         Y d{};
+        if (m.cmg) {
+            // H from beta at this evaluation; dH/dt = h_g Ahat(beta) diag(k) beta_dot; M = -dH/dt.
+            const Cluster c = cluster_at(m, &y[kYbeta], rate);
+            const V3 w = body_rate(m, am, &y[0], c.h.data(), &y[kYp]);
+            for (std::size_t i = 0; i < 3u; ++i) {
+                d[3u + i] = c.hdot[i];
+            }
+            for (std::size_t p = 0; p < 4u; ++p) {
+                d[kYbeta + p] = rate[p];
+            }
+            body_terms(y, w, d);
+            return d;
+        }
         const V3 w = body_rate(m, am, &y[0], &y[3], &y[kYp]);
         for (std::size_t i = 0; i < 3u; ++i) {
             const double hi = y[3u + i];
@@ -447,6 +560,13 @@ struct Deriv {
             }
             d[3u + i] = hd;
         }
+        body_terms(y, w, d);
+        return d;
+    }
+
+    // Everything but the actuator: G, q, the work of M = -dH/dt (d[3..5] set) and the modes.
+    void body_terms(const Y &y, const V3 &w, Y &d) const
+    {
         // dG/dt = -omega x G = G x omega
         d[0] = y[1] * w[2] - y[2] * w[1];
         d[1] = y[2] * w[0] - y[0] * w[2];
@@ -469,7 +589,6 @@ struct Deriv {
                 d[kYdiss] += c * qd[k] * qd[k];
             }
         }
-        return d;
     }
 };
 
@@ -539,10 +658,15 @@ GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g
         s.g_nms[i] = n > 0.0 ? g0_nms * g_dir[i] / n : 0.0;
         s.h_nms[i] = 0.0;
     }
-    // Modes at rest (q = 0, qdot = 0): then G = J omega, omega = J^-1 G and p = D^T omega.
+    if (m.cmg) {
+        s.beta_rad = m.beta0_rad;
+        s.h_nms = gyrostat_cluster_h(m, s.beta_rad);
+    }
+    // Modes at rest (q = 0, qdot = 0): then G = J omega + H, omega = J^-1 (G - H) and p = D^T omega
+    // (H = 0 for the wheels: G - 0 is G exactly).
     for (std::size_t k = 0; k < m.n_modes; ++k) {
         const std::size_t ax = m.modes[k].axis;
-        s.p_m[k] = m.modes[k].d_sqrtkgm * s.g_nms[ax] / m.j_kgm2[ax];
+        s.p_m[k] = m.modes[k].d_sqrtkgm * (s.g_nms[ax] - s.h_nms[ax]) / m.j_kgm2[ax];
     }
     s.g0_nms = g0_nms;
     s.t0_j = gyrostat_energy_j(m, s);   // the elastic energy is zero at rest
@@ -586,17 +710,40 @@ V3 gyrostat_g_inertial(const GyrostatState &s)
              2.0 * (qx * qz - qw * qy) * v[0] + 2.0 * (qy * qz + qw * qx) * v[1] + (1.0 - 2.0 * (qx * qx + qy * qy)) * v[2]}};
 }
 
-GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &torque_cmd_nm, double dt_s, int n_sub)
+V3 gyrostat_cluster_h(const GyrostatModel &m, const std::array<double, 4> &beta_rad)
 {
-    GyrostatTick r;
-    for (std::size_t i = 0; i < 3u; ++i) {
-        const double c = torque_cmd_nm[i];
-        r.motor_clip[i] = std::fabs(c) > m.torque_max_nm;
-        r.torque_nm[i] = clampd(c, -m.torque_max_nm, m.torque_max_nm);
+    if (!m.cmg) {
+        return {{0.0, 0.0, 0.0}};
     }
+    return cluster_at(m, beta_rad.data(), {{0.0, 0.0, 0.0, 0.0}}).h;
+}
+
+void gyrostat_set_rotor_scale(GyrostatModel &m, GyrostatState &s, std::size_t p, double scale)
+{
+    if (!m.cmg || p >= 4u) {
+        throw std::invalid_argument("gyrostat_set_rotor_scale: a cmg model and a rotor index 0..3");
+    }
+    const V3 wa = gyrostat_omega(m, s);
+    const V3 ha = s.h_nms;
+    m.rotor_scale[p] = scale;
+    s.h_nms = gyrostat_cluster_h(m, s.beta_rad);
+    const V3 wb = gyrostat_omega(m, s);
+    // G, q, p unchanged: J_eff (omega_b - omega_a) = -dH, so dE = 1/2 (omega_b - omega_a)^T J_eff
+    // (omega_a + omega_b) = -1/2 (omega_a + omega_b)^T dH exactly.
+    double dw = 0.0;
+    for (std::size_t i = 0; i < 3u; ++i) {
+        dw += 0.5 * (wa[i] + wb[i]) * (s.h_nms[i] - ha[i]);
+    }
+    s.work_j -= dw;
+}
+
+namespace {
+
+// n_sub RK4 steps of f over dt_s from s (the tick of either actuator).
+void gyrostat_integrate(const GyrostatModel &m, GyrostatState &s, const Deriv &f, double dt_s, int n_sub, GyrostatTick &r)
+{
     const int n = std::max(n_sub, 1);
     const double h = dt_s / static_cast<double>(n);
-    const Deriv f{m, axis_modal(m), r.torque_nm, &r.hlim_cut};
     Y y{};
     for (std::size_t i = 0; i < 3u; ++i) {
         y[i] = s.g_nms[i];
@@ -611,6 +758,9 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
         y[kYp + k] = s.p_m[k];
     }
     y[kYdiss] = s.diss_j;
+    for (std::size_t p = 0; p < 4u; ++p) {
+        y[kYbeta + p] = s.beta_rad[p];
+    }
     for (int step = 0; step < n; ++step) {
         const Y k1 = f(y);
         const Y k2 = f(axpy(y, k1, 0.5 * h));
@@ -619,10 +769,18 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
         for (std::size_t i = 0; i < kNy; ++i) {
             y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
         }
+        if (m.cmg) {
+            // H is a function of beta, not an integrated state: the slots take H(beta_end). The
+            // work integral was integrated with the same H(beta(t)) at every stage.
+            const V3 hb = cluster_at(m, &y[kYbeta], f.rate).h;
+            for (std::size_t i = 0; i < 3u; ++i) {
+                y[3u + i] = hb[i];
+            }
+        }
         // A step that crosses the hard limit overshoots it by at most M_max h; the wheel stops at the
         // limit instead. The removed momentum is an instantaneous exchange with the body, so its
         // work -omega . dH is booked (keeps T0 + work = T to first order in the overshoot).
-        for (std::size_t i = 0; i < 3u; ++i) {
+        for (std::size_t i = 0; i < 3u && !m.cmg; ++i) {
             const double hi = y[3u + i];
             if (std::fabs(hi) > m.h_max_nms) {
                 const double dh = std::copysign(m.h_max_nms, hi) - hi;
@@ -660,6 +818,48 @@ GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &t
         s.p_m[k] = y[kYp + k];
     }
     s.diss_j = y[kYdiss];
+    for (std::size_t p = 0; p < 4u; ++p) {
+        s.beta_rad[p] = y[kYbeta + p];
+    }
+}
+
+}  // namespace
+
+GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &torque_cmd_nm, double dt_s, int n_sub)
+{
+    if (m.cmg) {   // a cluster with no rate command holds its gimbals
+        return gyrostat_tick_cmg(m, s, {{0.0, 0.0, 0.0, 0.0}}, dt_s, n_sub);
+    }
+    GyrostatTick r;
+    for (std::size_t i = 0; i < 3u; ++i) {
+        const double c = torque_cmd_nm[i];
+        r.motor_clip[i] = std::fabs(c) > m.torque_max_nm;
+        r.torque_nm[i] = clampd(c, -m.torque_max_nm, m.torque_max_nm);
+    }
+    const Deriv f{m, axis_modal(m), r.torque_nm, {{0.0, 0.0, 0.0, 0.0}}, &r.hlim_cut};
+    gyrostat_integrate(m, s, f, dt_s, n_sub, r);
+    return r;
+}
+
+GyrostatTick gyrostat_tick_cmg(const GyrostatModel &m, GyrostatState &s, const std::array<double, 4> &rate_cmd_radps,
+                               double dt_s, int n_sub)
+{
+    if (!m.cmg) {
+        throw std::invalid_argument("gyrostat_tick_cmg: the model has no gyrodine cluster");
+    }
+    GyrostatTick r;
+    for (std::size_t p = 0; p < 4u; ++p) {
+        const double c = rate_cmd_radps[p];
+        r.rate_clip[p] = std::fabs(c) > m.umax_radps;
+        r.rate_radps[p] = std::isnan(c) ? 0.0 : clampd(c, -m.umax_radps, m.umax_radps);
+    }
+    const V3 h0 = s.h_nms;
+    const Deriv f{m, axis_modal(m), {{0.0, 0.0, 0.0}}, r.rate_radps, &r.hlim_cut};
+    gyrostat_integrate(m, s, f, dt_s, n_sub, r);
+    // H(beta) is exact at both ends and beta is linear in t: -dH/dt is M's exact tick average.
+    for (std::size_t i = 0; i < 3u; ++i) {
+        r.moment_nm[i] = -(s.h_nms[i] - h0[i]) / dt_s;
+    }
     return r;
 }
 

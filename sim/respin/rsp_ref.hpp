@@ -115,7 +115,9 @@ V3 rsp_distribute(const RespinTable &t, const V3 &mcmd_nm, const V3 &h_nms, std:
 struct RespinRefIn {
     std::array<std::int32_t, 3> gyro_cnt{{0, 0, 0}};   // 2^-22 rad/s
     std::array<std::int32_t, 3> whl_cnt{{0, 0, 0}};    // 2^-10 rad/s
-    std::uint32_t valid = 0x3Fu;                       // bits 0..2 gyro, 3..5 wheel (as rsp_in_t)
+    std::array<std::int32_t, 4> gimbal_cnt{{0, 0, 0, 0}};   // 2 pi / 2^20 rad (gyrodines)
+    std::array<std::int32_t, 4> rotor_cnt{{0, 0, 0, 0}};    // 2^-8 rad/s (gyrodines, health)
+    std::uint32_t valid = 0x3FFFu;                     // bits 0..2 gyro, 3..5 wheel, 6..9 gimbal, 10..13 rotor
     std::uint32_t sat = 0u;                            // same bits: at full scale
 };
 
@@ -133,7 +135,9 @@ struct RespinRefOut {
     V3 e_xi{{0.0, 0.0, 0.0}};
     V3 mcmd_nm{{0.0, 0.0, 0.0}};
     V3 mdel_nm{{0.0, 0.0, 0.0}};
-    V3 whl_torque_nm{{0.0, 0.0, 0.0}};     // = -mdel (zero on G0 / LOW / invalid ticks)
+    V3 whl_torque_nm{{0.0, 0.0, 0.0}};     // = -mdel (zero on G0 / LOW / invalid ticks; zero with gyrodines)
+    std::array<std::int32_t, 4> gimbal_rate_cnt{{0, 0, 0, 0}};   // gyrodines: rate command counts (2^-16 rad/s)
+    double ms = 0.0, s_rate = 0.0;         // gyrodines: m_s and the rate scale s of the tick
     V3 h_nms{{0.0, 0.0, 0.0}};             // wheel momentum used
     double g0_nms = 0.0;                   // 0 until frozen
     double rho = 0.0;                      // |G| r0 - 1
@@ -170,6 +174,8 @@ private:
     V3 ghat_nms_{{0.0, 0.0, 0.0}};     // G filter estimate (spec 30 §3.6)
     std::uint32_t done_run_ = 0u, n_switch_ = 0u;
     std::uint64_t n_invalid_ = 0u;
+    std::uint32_t rotor_run_ = 0u;
+    bool rotor_fault_ = false;
 };
 
 // Wheel torque N m -> command counts as the flight rounds it (half away from zero, int16 range).
@@ -180,6 +186,17 @@ std::int32_t torque_counts(double torque_nm);
 // dH_i/dt = applied wheel torque (motor command saturated at M_max, cut at the momentum limit
 // where it would increase |H_i|, plus bearing friction). Integrated by RK4 with n_sub steps per
 // tick; q_BI (Hamilton, scalar first, v_I = q v_B q*) follows dq/dt = 1/2 q (0, omega).
+//
+// Gyrodine cluster instead of the wheels (GyrostatModel::cmg, spec 30 §2 "2-SPE"): four
+// single-gimbal units of constant rotor momentum k_p h_g (k_p = rotor_scale[p], 1 nominal), ideal
+// gimbal rate loop: the commanded rate is clipped to +-u_max and held over the tick, the gimbal
+// angles beta are integrated inside the RK4 step (4 more slots), no gimbal stops. H is not an
+// integrated state: every derivative evaluation takes H = sum_p k_p h_g u_p(beta_p) and
+// dH/dt = h_g sum_p k_p a_p(beta_p) beta_dot_p from the one geometry source cmg_geom
+// (rsp_cmg_ref: H = h_g (c3 - c4, c1 - c2, s1 + s2 + s3 + s4), Ahat = dH/dbeta / h_g); the moment
+// on the body is M = -dH/dt, the work integral books omega^T M as for the wheels. The state's
+// h_nms is H(beta) after every step, so gyrostat_omega, the energies and every consumer of h_nms
+// work unchanged. The wheel motor / momentum limits and the bearing friction do not apply.
 
 //
 // Elastic variant (spec 30 §2): up to three cantilevered array modes, unit modal mass, each coupled
@@ -193,6 +210,8 @@ std::int32_t torque_counts(double torque_nm);
 // omega^T M - sum (delta/pi) Omega_i qdot_i^2 (the modal dissipation, booked in diss_j).
 
 constexpr std::size_t kRspMaxModes = 3u;
+// The gyrodines' null configuration beta = (gamma, gamma, -gamma, -gamma), gamma = pi/4: H = 0.
+constexpr double kRspCmgNullRad = 0.78539816339744830962;
 
 struct ElasticMode {
     std::size_t axis = 0u;           // body axis it couples with (0 x, 1 y, 2 z)
@@ -210,6 +229,12 @@ struct GyrostatModel {
     double viscous_nmps = 0.0;       // N m per rad/s of wheel speed
     std::size_t n_modes = 0u;        // 0: rigid
     std::array<ElasticMode, kRspMaxModes> modes{};
+    // Gyrodine cluster instead of the wheels (the wheel fields above are then unused).
+    bool cmg = false;
+    double hg_nms = 7.5;             // nominal rotor momentum h_g
+    double umax_radps = 0.1745;      // gimbal rate limit u_max (the plant clips the command to it)
+    std::array<double, 4> beta0_rad{{kRspCmgNullRad, kRspCmgNullRad, -kRspCmgNullRad, -kRspCmgNullRad}};
+    std::array<double, 4> rotor_scale{{1.0, 1.0, 1.0, 1.0}};   // rotor p momentum = rotor_scale[p] h_g
 };
 
 // The documented modal sets of spec 30 §2: "E1" (nominal) and "E2" (stress); "" or "none": rigid.
@@ -220,16 +245,21 @@ double gyrostat_fastest_mode_radps(const GyrostatModel &m);
 
 struct GyrostatState {
     V3 g_nms{{0.0, 0.0, 300.0}};     // total momentum, body frame
-    V3 h_nms{{0.0, 0.0, 0.0}};       // wheel momenta (about the wheel axes = body axes)
+    V3 h_nms{{0.0, 0.0, 0.0}};       // wheel momenta (about the wheel axes = body axes); cmg: H(beta)
     std::array<double, 4> q_bi{{1.0, 0.0, 0.0, 0.0}};
     V3 q_m{{0.0, 0.0, 0.0}};         // modal coordinates q_i, kg^1/2 m (elastic variant)
     V3 p_m{{0.0, 0.0, 0.0}};         // conjugate modal momenta p_i = d_i omega_axis + qdot_i
+    // Gimbal angles (gyrodines; not wrapped: the encoder takes them modulo 2 pi). A wheel model
+    // keeps the null configuration (what a locked cluster's encoders would read).
+    std::array<double, 4> beta_rad{{kRspCmgNullRad, kRspCmgNullRad, -kRspCmgNullRad, -kRspCmgNullRad}};
     double g0_nms = 300.0;           // |G| the integrator re-projects onto
     double t0_j = 0.0;               // E at t = 0 (T for a rigid body)
     double work_j = 0.0;             // integral of omega^T M dt (M = -dH/dt, the moment on the body)
     double diss_j = 0.0;             // energy dissipated in the modes (0 for a rigid body)
 };
 
+// G(0) = g0 g_dir / |g_dir|, modes at rest; a cmg model starts at beta = m.beta0_rad with
+// H(0) = H(beta0) (0 at the null configuration), omega(0) = J^-1 (G - H(0)).
 GyrostatState gyrostat_initial(const GyrostatModel &m, const V3 &g_dir, double g0_nms);
 V3 gyrostat_omega(const GyrostatModel &m, const GyrostatState &s);
 double gyrostat_energy_j(const GyrostatModel &m, const GyrostatState &s);   // T = 1/2 omega^T J omega
@@ -242,10 +272,25 @@ struct GyrostatTick {
     V3 torque_nm{{0.0, 0.0, 0.0}};          // motor torque after the motor limit
     std::array<bool, 3> motor_clip{{false, false, false}};
     std::array<bool, 3> hlim_cut{{false, false, false}};   // the momentum limit cut torque this tick
+    // Gyrodines (gyrostat_tick_cmg):
+    std::array<double, 4> rate_radps{{0.0, 0.0, 0.0, 0.0}};    // applied gimbal rate (after the clip)
+    std::array<bool, 4> rate_clip{{false, false, false, false}};   // |command| > u_max
+    V3 moment_nm{{0.0, 0.0, 0.0}};          // M on the body averaged over the tick: -(H_end - H_start) / dt
 };
 
-// One tick with the motor torque command held (ZOH) over dt_s, n_sub RK4 steps.
+// One tick with the motor torque command held (ZOH) over dt_s, n_sub RK4 steps. A cmg model
+// holds its gimbals (zero rates; the torque is ignored).
 GyrostatTick gyrostat_tick(const GyrostatModel &m, GyrostatState &s, const V3 &torque_cmd_nm, double dt_s, int n_sub);
+// One tick of a cmg model: gimbal rate commands clipped to +-u_max and held over dt_s, n_sub RK4
+// steps. Throws std::invalid_argument for a wheel model.
+GyrostatTick gyrostat_tick_cmg(const GyrostatModel &m, GyrostatState &s, const std::array<double, 4> &rate_cmd_radps,
+                               double dt_s, int n_sub);
+// The cluster momentum H(beta) of a cmg model (rotor scales included); zero for a wheel model.
+V3 gyrostat_cluster_h(const GyrostatModel &m, const std::array<double, 4> &beta_rad);
+// Rotor p's momentum becomes scale h_g (a rotor fault): an instantaneous internal exchange, G kept,
+// H and omega jump; its work -1/2 (omega_before + omega_after)^T dH (exact for the rigid and the
+// elastic body: the energy is quadratic in omega at fixed G, p, q) is booked into work_j.
+void gyrostat_set_rotor_scale(GyrostatModel &m, GyrostatState &s, std::size_t p, double scale);
 
 // ------------------------------------------------------------------------------------------------
 // Linearisation of the LIN law (spec 30 §3.3 item 2, §6): the 6x6 Jacobian in x = (G, H) at

@@ -19,6 +19,7 @@ inline constexpr RespinNamedTable kRespinTables[] = {
     {"rsp_ts05", &RSP_TBL_TS05},
     {"rsp_noguard", &RSP_TBL_NOGUARD},
     {"rsp_gfilt", &RSP_TBL_GFILT},
+    {"rsp_cmg", &RSP_TBL_CMG},
 };
 
 }  // namespace sim

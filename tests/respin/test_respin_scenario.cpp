@@ -87,14 +87,28 @@ SIM_TEST(every_key_round_trips)
     EXPECT_EQ_INT(b.gyro_seed, 42);
     EXPECT_EQ_INT(sim::respin_section().noise_seed(s), 42);
 
-    // The plant starts where the setup says: G(0) = g0 g_dir, H(0) = 0; 6 sensor channels.
+    EXPECT_TRUE(!b.gyrodines);   // the default actuator: wheels
+
+    // The plant starts where the setup says: G(0) = g0 g_dir, H(0) = 0; all 14 sensor channels,
+    // the gimbal channels at the null configuration's counts (a locked cluster), rotors at 0.
     const std::unique_ptr<sim::Plant> pl = sim::make_plant(s);
     const std::vector<double> t = pl->truth();
     EXPECT_TRUE(t.size() == pl->truth_names().size());
     EXPECT_NEAR(t[6], 40.5 * 0.6, 1e-12);
     EXPECT_NEAR(t[8], -40.5 * 0.8, 1e-12);
     EXPECT_NEAR(t[3], 0.0, 0.0);
-    EXPECT_EQ_INT(pl->sense().n_ch, 6);
+    const sim::SensorFrame f = pl->sense();
+    EXPECT_EQ_INT(f.n_ch, 14);
+    EXPECT_EQ_INT(f.cnt[6], 131072);
+    EXPECT_EQ_INT(f.cnt[7], 131072);
+    EXPECT_EQ_INT(f.cnt[8], 917504);
+    EXPECT_EQ_INT(f.cnt[9], 917504);
+    for (std::size_t i = 6; i < 14u; ++i) {
+        EXPECT_EQ_INT(f.status[i], 0);
+        if (i >= 10u) {
+            EXPECT_EQ_INT(f.cnt[i], 0);
+        }
+    }
 
     // A seeded random direction: unit length, the same for the same seed, another for another.
     const sim::Scenario r1 = sim::parse_scenario(std::string(kMinimal) + "respin: {g_dir_seed: 5}\n", "t.yaml");
@@ -127,6 +141,108 @@ SIM_TEST(bad_values_are_named)
     expect_scenario_error(base + "period_us: 500000\nrespin: {elastic: E1}\n", {"'respin.n_sub'", "need n_sub >= 17"});
 }
 
+// The gyrodine keys (respin.actuator, respin.cmg): every key round-trips into the setup and the
+// model, the plant publishes the superset of channels, bad values are named.
+SIM_TEST(gyrodine_keys)
+{
+    const std::string base = std::string(kMinimal) + "fsw: {table: rsp_cmg}\n";
+    const sim::Scenario s = sim::parse_scenario(base +
+        "respin: {actuator: gyrodines, elastic: E1,\n"
+        "  cmg: {hg_nms: 6.5, umax_radps: 0.15, beta0_rad: [0.1, -0.2, 0.3, 6.0], rotor_speed_radps: 550,\n"
+        "        rotor_fault: {t_s: 300, index: 2, scale: 0.97}}}\n",
+        "t.yaml");
+    const sim::RespinSetup &b = s.mission_part<sim::RespinScenario>().body;
+    EXPECT_TRUE(b.gyrodines);
+    EXPECT_NEAR(b.cmg_hg_nms, 6.5, 0.0);
+    EXPECT_NEAR(b.cmg_umax_radps, 0.15, 0.0);
+    EXPECT_NEAR(b.cmg_beta0_rad[0], 0.1, 0.0);
+    EXPECT_NEAR(b.cmg_beta0_rad[1], -0.2, 0.0);
+    EXPECT_NEAR(b.cmg_beta0_rad[3], 6.0, 0.0);
+    EXPECT_NEAR(b.cmg_rotor_speed_radps, 550.0, 0.0);
+    EXPECT_TRUE(b.rotor_fault);
+    EXPECT_NEAR(b.rotor_fault_t_s, 300.0, 0.0);
+    EXPECT_EQ_INT(b.rotor_fault_index, 2);
+    EXPECT_NEAR(b.rotor_fault_scale, 0.97, 0.0);
+    const ref::GyrostatModel m = sim::respin_model(b);
+    EXPECT_TRUE(m.cmg);
+    EXPECT_NEAR(m.hg_nms, 6.5, 0.0);
+    EXPECT_NEAR(m.umax_radps, 0.15, 0.0);
+    EXPECT_NEAR(m.beta0_rad[2], 0.3, 0.0);
+    EXPECT_NEAR(m.rotor_scale[2], 1.0, 0.0);   // nominal until the plant applies the fault
+    EXPECT_EQ_INT(m.n_modes, 3);               // the elastic variant flies with gyrodines too
+
+    // Defaults: h_g 7.5, u_max 0.1745, the null configuration, 600 rad/s, no fault.
+    const sim::Scenario d = sim::parse_scenario(base + "respin: {actuator: gyrodines}\n", "t.yaml");
+    const sim::RespinSetup &bd = d.mission_part<sim::RespinScenario>().body;
+    EXPECT_NEAR(bd.cmg_hg_nms, 7.5, 0.0);
+    EXPECT_NEAR(bd.cmg_umax_radps, 0.1745, 0.0);
+    EXPECT_NEAR(bd.cmg_beta0_rad[0], M_PI / 4.0, 1e-16);
+    EXPECT_NEAR(bd.cmg_beta0_rad[3], -M_PI / 4.0, 1e-16);
+    EXPECT_NEAR(bd.cmg_rotor_speed_radps, 600.0, 0.0);
+    EXPECT_TRUE(!bd.rotor_fault);
+    // Its plant: H(0) = 0 at the null configuration, the wheel-speed channels 0, the gimbal
+    // channels at the null counts, the rotors at 600 rad/s = 153 600 counts of 2^-8 rad/s.
+    const std::unique_ptr<sim::Plant> pl = sim::make_plant(d);
+    const std::vector<double> t = pl->truth();
+    EXPECT_NEAR(std::fabs(t[3]) + std::fabs(t[4]) + std::fabs(t[5]), 0.0, 1e-14);
+    EXPECT_NEAR(t[8], 300.0, 0.0);
+    EXPECT_TRUE(pl->truth_names()[3] == "h_cmg_x_nms");
+    const sim::SensorFrame f = pl->sense();
+    EXPECT_EQ_INT(f.n_ch, 14);
+    const std::int32_t want[14] = {0, 0, 0, 0, 0, 0, 131072, 131072, 917504, 917504, 153600, 153600, 153600, 153600};
+    for (std::size_t i = 3; i < 14u; ++i) {
+        EXPECT_EQ_INT(f.cnt[i], want[i]);
+        EXPECT_EQ_INT(f.status[i], 0);
+    }
+
+    const std::string g = base + "respin: {actuator: gyrodines, ";
+    expect_scenario_error(base + "respin: {actuator: sails}\n", {"'respin.actuator'", "wheels", "gyrodines"});
+    expect_scenario_error(std::string(kMinimal) + "respin: {cmg: {hg_nms: 7.5}}\n",
+                          {"'respin.cmg'", "not fitted", "actuator: gyrodines"});
+    expect_scenario_error(g + "wheel: {iw_kgm2: 0.01}}\n", {"'respin.wheel'", "not fitted"});
+    expect_scenario_error(g + "cmg: {hg: 7.5}}\n", {"'respin.cmg.hg'", "unknown key"});
+    expect_scenario_error(g + "cmg: {hg_nms: 0}}\n", {"'respin.cmg.hg_nms'", "out of range"});
+    expect_scenario_error(g + "cmg: {umax_radps: 2}}\n", {"'respin.cmg.umax_radps'", "out of range"});
+    expect_scenario_error(g + "cmg: {beta0_rad: [0, 0, 0]}}\n", {"'respin.cmg.beta0_rad'", "four numbers"});
+    expect_scenario_error(g + "cmg: {beta0_rad: [0, 0, 0, 7]}}\n", {"'respin.cmg.beta0_rad[3]'", "out of range"});
+    expect_scenario_error(g + "cmg: {rotor_speed_radps: 0}}\n", {"'respin.cmg.rotor_speed_radps'", "out of range"});
+    expect_scenario_error(g + "cmg: {rotor_fault: {t_s: 300, index: 2}}}\n",
+                          {"'respin.cmg.rotor_fault.scale'", "missing"});
+    expect_scenario_error(g + "cmg: {rotor_fault: {t_s: 300, index: 4, scale: 0.97}}}\n",
+                          {"'respin.cmg.rotor_fault.index'"});
+    expect_scenario_error(g + "cmg: {rotor_fault: {t_s: 300, index: 1, scale: 2}}}\n",
+                          {"'respin.cmg.rotor_fault.scale'", "out of range"});
+    expect_scenario_error(g + "cmg: {rotor_fault: {t_s: -1, index: 1, scale: 0.9}}}\n",
+                          {"'respin.cmg.rotor_fault.t_s'", "out of range"});
+    expect_scenario_error(g + "cmg: {rotor_fault: {t_s: 1, index: 1, scale: 0.9, when: 3}}}\n",
+                          {"'respin.cmg.rotor_fault.when'", "unknown key"});
+    // The table's actuator kind must be the plant's.
+    expect_scenario_error(std::string(kMinimal) + "respin: {actuator: gyrodines}\n",
+                          {"'respin.actuator'", "gyrodines", "'rsp_default' flies wheels"});
+    expect_scenario_error(base, {"'respin.actuator'", "wheels", "'rsp_cmg' flies gyrodines"});
+    expect_scenario_error(base + "respin: {g0_nms: 100}\n", {"'respin.actuator'", "'rsp_cmg' flies gyrodines"});
+}
+
+// A8's scenario (spec 30 §7): gyrodines, NEAREST, g(0) = e_z, g0 = 300, the §2 sensors, 6 000 s.
+SIM_TEST(gyrodine_scenario_reads)
+{
+    const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_cmg.yaml");
+    const sim::RespinSetup &b = s.mission_part<sim::RespinScenario>().body;
+    EXPECT_TRUE(s.fsw.table == "rsp_cmg");
+    EXPECT_NEAR(s.duration_s, 6000.0, 0.0);
+    EXPECT_TRUE(b.gyrodines);
+    EXPECT_TRUE(b.elastic.empty());
+    EXPECT_TRUE(!b.rotor_fault);
+    EXPECT_NEAR(b.cmg_hg_nms, 7.5, 0.0);
+    EXPECT_NEAR(b.cmg_umax_radps, 0.1745, 0.0);
+    EXPECT_NEAR(b.cmg_beta0_rad[0], M_PI / 4.0, 1e-16);
+    EXPECT_NEAR(b.cmg_beta0_rad[2], -M_PI / 4.0, 1e-16);
+    EXPECT_NEAR(b.cmg_rotor_speed_radps, 600.0, 0.0);
+    expect_nominal_setup(b);
+    EXPECT_EQ_INT(sim::respin_boot_table(s.fsw.table).act_kind, RSP_ACT_GYRODINES);
+    EXPECT_EQ_INT(sim::respin_boot_table(s.fsw.table).mode, RSP_MODE_NEAREST);
+}
+
 // The elastic scenarios (A10, A11) and the modal sets of spec 30 §2.
 SIM_TEST(elastic_scenarios_and_modal_sets)
 {
@@ -153,6 +269,7 @@ int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(shipped_scenarios_read), cmocka_unit_test(every_key_round_trips),
                                        cmocka_unit_test(bad_values_are_named),
-                                       cmocka_unit_test(elastic_scenarios_and_modal_sets)};
+                                       cmocka_unit_test(elastic_scenarios_and_modal_sets),
+                                       cmocka_unit_test(gyrodine_keys), cmocka_unit_test(gyrodine_scenario_reads)};
     return cmocka_run_group_tests_name("respin_scenario", tests, nullptr, nullptr);
 }

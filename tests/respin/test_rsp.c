@@ -25,6 +25,9 @@ static rsp_state_t g_s;
 #define M_STAR 2516582
 #define OUT_MAX 19661
 #define HLIM   5221908
+#define ENC_Q  131072      /* pi/4 in encoder counts (2^20 per turn) */
+#define ROTOR_NOM 153600   /* 600 rad/s in 2^-8 rad/s */
+#define C_Z02  838861      /* gyro z counts of 0.2 rad/s: G_z = 670 * 0.2 = 134 N m s (> g_guard 60) */
 
 /* The default table of the brief (spec 30 §3.4, §8), built here rather than taken from
    rsp_tables.h. */
@@ -83,7 +86,17 @@ static rsp_in_t input(int32_t cx, int32_t cy, int32_t cz, int32_t wx, int32_t wy
     in.whl_speed_cnt[0] = wx;
     in.whl_speed_cnt[1] = wy;
     in.whl_speed_cnt[2] = wz;
-    in.valid = 0x3Fu;
+    /* the gyrodine channels (ignored with wheels): the null configuration (pi/4, pi/4, -pi/4, -pi/4)
+       = 2^17, 2^17, 7 2^17, 7 2^17 encoder counts, H = 0; rotors at 600 rad/s */
+    in.gimbal_enc_cnt[0] = ENC_Q;
+    in.gimbal_enc_cnt[1] = ENC_Q;
+    in.gimbal_enc_cnt[2] = 7 * ENC_Q;
+    in.gimbal_enc_cnt[3] = 7 * ENC_Q;
+    in.rotor_cnt[0] = ROTOR_NOM;
+    in.rotor_cnt[1] = ROTOR_NOM;
+    in.rotor_cnt[2] = ROTOR_NOM;
+    in.rotor_cnt[3] = ROTOR_NOM;
+    in.valid = 0x3FFFu;
     in.sat = 0u;
     return in;
 }
@@ -161,7 +174,8 @@ UT_TEST(params_check_names_each_bad_field)
     UT_UEQ(rsp_params_check(NULL, &why), FSW_ERR_ARG);
     p.period_us = 0u; expect_why(&p, RSP_WHY_PERIOD); p = d;
     p.mode = 2u; expect_why(&p, RSP_WHY_MODE); p = d;
-    p.act_kind = RSP_ACT_GYRODINES; expect_why(&p, RSP_WHY_MODE); p = d;
+    p.act_kind = 2u; expect_why(&p, RSP_WHY_MODE); p = d;
+    p.act_kind = RSP_ACT_GYRODINES; UT_UEQ(rsp_params_check(&p, &why), FSW_OK); p = d;
     p.j_q19[2] = 0; expect_why(&p, RSP_WHY_INERTIA); p = d;
     p.j_q19[0] = p.j_q19[1]; expect_why(&p, RSP_WHY_INERTIA); p = d;   /* J_y strictly largest */
     p.heps_q30 = 0; expect_why(&p, RSP_WHY_THRESH); p = d;
@@ -1058,6 +1072,90 @@ UT_TEST(g_filter_propagates_with_the_body_rate)
     UT_TRUE((g_s.tlm.g_q30[2] >= (19370 - 3)) && (g_s.tlm.g_q30[2] <= (19370 + 3)));
 }
 
+/* Gyrodines (spec 30 §4): the first law tick with g = +e_z (FAR; C_phi = 0 -> a_f = +1) commands
+   M = -M* Sgn(g) = (-1, -1, -1) N m (Sgn 0 = +1). At the null configuration Ahat Ahat^T = diag(1, 1, 2),
+   so y = (Hdot_c / h_g) / (diag(1, 1, 2) + lambda0) = (1/7.5) (1/1.05, 1/1.05, 1/2.05) and
+   beta_dot = Ahat^T y = sqrt(1/2) (y_z - y_y, y_y + y_z, y_x + y_z, y_z - y_x)
+   = (-0.043801, 0.135782, 0.135782, -0.043801) rad/s (below u_max: no scaling)
+   -> counts (x 2^16) -2 870.5 -> -2 871, 8 898.7 -> 8 899 (+-1: the solve's LSBs sit far below a
+   count, but the .5 of -2 870.5 is within 0.02 counts of the boundary); the delivered moment of those
+   counts, -h_g Ahat cnt 2^-16 = (-0.952451, -0.952451, -0.975595) N m = (-15 979 482, -15 979 482,
+   -16 367 768) 2^-24 N m, +-64 LSB (one count of slack on a gimbal moves it by 7.5 * 0.707 * 2^-16 N m
+   = 1 357 LSB: the bound applies when the counts match). No wheel torque. */
+UT_TEST(gyrodines_far_law_is_steered)
+{
+    rsp_params_t p = params();
+    rsp_out_t o;
+    p.act_kind = RSP_ACT_GYRODINES;
+    p.mstar_q24 = 16777216;   /* M* = 1 N m */
+    p.gguard_q20 = 62914560;  /* 60 N m s */
+    prime(&p, 2u, C_Z02, 0);
+    o = step6(&p, 0, 0, C_Z02, 0, 0, 0);
+    UT_UEQ(g_s.tlm.region, RSP_RG_FAR);
+    UT_EQ(g_s.tlm.a_f, 1);
+    UT_EQ(g_s.tlm.mcmd_q24[0], -16777216);
+    UT_EQ(g_s.tlm.mcmd_q24[2], -16777216);
+    check_cmd(&o, 0, 0, 0);
+    UT_TRUE((o.gimbal_rate_cnt[0] >= -2872) && (o.gimbal_rate_cnt[0] <= -2870));
+    UT_EQ(o.gimbal_rate_cnt[1], 8899);
+    UT_EQ(o.gimbal_rate_cnt[2], 8899);
+    UT_TRUE((o.gimbal_rate_cnt[3] >= -2872) && (o.gimbal_rate_cnt[3] <= -2870));
+    if ((o.gimbal_rate_cnt[0] == -2871) && (o.gimbal_rate_cnt[3] == -2871)) {
+        UT_TRUE((g_s.tlm.mdel_q24[0] >= (-15979482 - 64)) && (g_s.tlm.mdel_q24[0] <= (-15979482 + 64)));
+        UT_TRUE((g_s.tlm.mdel_q24[1] >= (-15979482 - 64)) && (g_s.tlm.mdel_q24[1] <= (-15979482 + 64)));
+        UT_TRUE((g_s.tlm.mdel_q24[2] >= (-16367768 - 64)) && (g_s.tlm.mdel_q24[2] <= (-16367768 + 64)));
+    }
+    UT_EQ(g_s.tlm.cmg_rate_cnt[1], 8899);
+    UT_TRUE((o.health & (RSP_H_SINGULAR | RSP_H_RATE_LIMITED | RSP_H_OVERFLOW)) == 0u);
+    /* m_s = sqrt 2 at the null configuration: 379 625 062 Q3.28, within the sin/cos LSBs */
+    UT_TRUE((g_s.tlm.cmg_ms_q28 >= (379625062 - 64)) && (g_s.tlm.cmg_ms_q28 <= (379625062 + 64)));
+}
+
+/* Gyrodines, faults (spec 30 §8): a missing gimbal angle makes the tick invalid (WHL_BAD, zero
+   rates: no propagation of H); a rotor 2 % below nominal (beyond rotor_tol 1 %) for n_fault ticks
+   latches ROTOR_FAULT and the rates are zero from then on; 0.9 % below does not. */
+UT_TEST(gyrodine_faults)
+{
+    rsp_params_t p = params();
+    rsp_out_t o;
+    rsp_in_t in;
+    uint32_t k;
+    p.act_kind = RSP_ACT_GYRODINES;
+    p.mstar_q24 = 16777216;
+    p.gguard_q20 = 62914560;
+    prime(&p, 2u, C_Z02, 0);
+    in = input(0, 0, C_Z02, 0, 0, 0);
+    in.valid &= ~(1u << 8u);   /* gimbal 3 missing */
+    o = step_in(&p, &in);
+    UT_TRUE((o.health & RSP_H_WHL_BAD) != 0u);
+    UT_EQ(o.gimbal_rate_cnt[1], 0);
+    for (k = 0u; k < p.n_fault + 5u; k++) {
+        int32_t cz = ((k % 2u) == 0u) ? -C_Z02 : C_Z02;
+        in = input(0, 0, cz, 0, 0, 0);
+        in.rotor_cnt[2] = ROTOR_NOM - 1382;   /* -0.9 %: within rotor_tol */
+        o = step_in(&p, &in);
+    }
+    UT_TRUE((o.health & RSP_H_ROTOR_FAULT) == 0u);
+    UT_TRUE(o.gimbal_rate_cnt[1] != 0);
+    for (k = 0u; k < p.n_fault; k++) {
+        int32_t cz = ((k % 2u) == 0u) ? -C_Z02 : C_Z02;
+        in = input(0, 0, cz, 0, 0, 0);
+        in.rotor_cnt[2] = ROTOR_NOM - 3072;   /* -2 % */
+        o = step_in(&p, &in);
+        if ((k + 1u) < p.n_fault) {
+            UT_CHECK((o.health & RSP_H_ROTOR_FAULT) == 0u);
+        }
+    }
+    UT_TRUE((o.health & RSP_H_ROTOR_FAULT) != 0u);
+    UT_EQ(o.gimbal_rate_cnt[0], 0);
+    UT_EQ(o.gimbal_rate_cnt[1], 0);
+    UT_EQ(g_s.tlm.mdel_q24[2], 0);
+    in = input(0, 0, C_Z02, 0, 0, 0);   /* the rotor back at nominal: still latched */
+    o = step_in(&p, &in);
+    UT_TRUE((o.health & RSP_H_ROTOR_FAULT) != 0u);
+    UT_EQ(o.gimbal_rate_cnt[1], 0);
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
@@ -1087,6 +1185,8 @@ int main(void)
         UT_CASE(deterministic_replay),
         UT_CASE(g_filter_blends_and_reseeds),
         UT_CASE(g_filter_propagates_with_the_body_rate),
+        UT_CASE(gyrodines_far_law_is_steered),
+        UT_CASE(gyrodine_faults),
     };
     return UT_RUN("rsp", cases);
 }

@@ -213,6 +213,70 @@ SIM_TEST(a10_elastic_e1_filter_off) { elastic_run("respin_e1.yaml", "rsp_default
 SIM_TEST(a10_elastic_e1_filter_on) { elastic_run("respin_e1.yaml", "rsp_gfilt", 0.15, 0.25, -0.1); }
 SIM_TEST(a11_elastic_e2_converges) { elastic_run("respin_e2.yaml", "rsp_default", 0.7, 1.1, -0.8); }
 
+// A8 (spec 30 §7): the four-gyrodine cluster, NEAREST, M* = 1 N m, g(0) = e_z, g0 = 300, 6 000 s,
+// fixed point in SIL; its first 600 s against the double reference as spec 30 §6 asks (|dH_i| <= 0.02
+// N m s, angle(g_fx, g_ref) <= 1e-3 rad). The cluster runs onto the saturation surface |H_z| -> 30
+// (m_s -> 0): SINGULAR must show, the damped inverse must pass through it, the gimbal rates stay
+// within u_max = 11 437 counts, no fx status.
+SIM_TEST(a8_gyrodines_converge)
+{
+    const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_cmg.yaml");
+    const sil::InprocResult fx = fly(s, "fixed");
+    const sil::InprocResult rf = fly(s, "ref");
+    const host::RespinMetrics &m = mm(fx);
+    const auto &a = m.early, &b = mm(rf).early;
+    double dh = 0.0, ang = 0.0;
+    for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+        double c = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            dh = std::max(dh, std::fabs(a[k].h_nms[i] - b[k].h_nms[i]));
+            c += a[k].g_unit[i] * b[k].g_unit[i];
+        }
+        ang = std::max(ang, std::acos(std::min(1.0, c)));
+    }
+    std::printf("A8 fixed: first |xi|<0.01 %.1f s, settled %.1f s, |xi| end %.3e, peak |H| %.4f, peak rate %.6f rad/s, "
+                "singular ticks %.0f, rate-limited %.0f; reference settled %.1f s; 600 s: max |dH_i| %.3e, angle %.3e; "
+                "%.2f s wall\n",
+                m.t_first_xi_s, m.t_settle_s, m.xi_final, m.h_peak_nms, m.gimbal_rate_peak_radps,
+                fx.summary.number("fsw_rsp_n_singular"), fx.summary.number("fsw_rsp_n_rate_limited"),
+                mm(rf).t_settle_s, dh, ang, fx.wall_s);
+    EXPECT_TRUE(!fx.plant.diverged && fx.plant.deterministic());
+    EXPECT_EQ_INT(fx.plant.steps, 60000);
+    EXPECT_TRUE(a.size() >= 6000u);
+    EXPECT_LE(dh, 0.02);
+    EXPECT_LE(ang, 1e-3);
+    EXPECT_TRUE(m.t_first_xi_s >= 0.0 && m.t_first_xi_s <= 2500.0);
+    EXPECT_TRUE(m.t_settle_s >= 0.0 && m.t_settle_s <= 3500.0);
+    EXPECT_LE(m.xi_final, 1e-3);
+    EXPECT_TRUE(m.h_peak_nms > 29.0);
+    EXPECT_TRUE((m.health_or & RSP_H_SINGULAR) != 0u);
+    EXPECT_LE(m.gimbal_rate_peak_radps, 11437.0 / 65536.0);
+    EXPECT_LE(m.cmd_peak_nm, 0.0);   // no wheel torque with the gyrodines
+    EXPECT_LE(m.g_rel_err_max, 1e-9);
+    EXPECT_LE(m.e_check_max_j, 1e-6);
+    EXPECT_TRUE((m.health_or & (RSP_H_OVERFLOW | RSP_H_ROTOR_FAULT | RSP_H_ENERGY_ALARM)) == 0u);
+    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
+    EXPECT_EQ_INT(fx.summary.number("t_first_fx_status_s"), -1);
+}
+
+// ROTOR_FAULT (spec 30 §8): rotor 3 drops to 97 % of its momentum at 300 s; the module latches the
+// fault after n_fault ticks and commands zero rates from then on; never SAFE.
+SIM_TEST(rotor_fault_latches_and_holds_the_gimbals)
+{
+    sim::Scenario s = sim::parse_scenario(
+        "name: rotor\nmission: respin\nduration_s: 600\nfsw: {table: rsp_cmg}\n"
+        "respin: {g0_nms: 300.0, g_dir: [0.0, 0.0, 1.0], actuator: gyrodines,\n"
+        "  cmg: {rotor_fault: {t_s: 300.0, index: 2, scale: 0.97}}, gyro: {noise_radps: 1.0e-5, seed: 3}}\n",
+        "rotor.yaml");
+    const sil::InprocResult fx = fly(s, "fixed");
+    std::printf("rotor fault: health OR 0x%08X\n", mm(fx).health_or);
+    EXPECT_TRUE(!fx.plant.diverged);
+    EXPECT_TRUE((mm(fx).health_or & RSP_H_ROTOR_FAULT) != 0u);
+    EXPECT_TRUE((mm(fx).health_or & (RSP_H_INPUT_FAULT | RSP_H_OVERFLOW)) == 0u);   // only the rotor
+    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
+    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_overflow"), 0);
+}
+
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(first_600_s_fixed_tracks_the_reference),
@@ -223,6 +287,8 @@ int main()
                                        cmocka_unit_test(wheel_friction_latches_wheel_fault),
                                        cmocka_unit_test(a10_elastic_e1_filter_off),
                                        cmocka_unit_test(a10_elastic_e1_filter_on),
-                                       cmocka_unit_test(a11_elastic_e2_converges)};
+                                       cmocka_unit_test(a11_elastic_e2_converges),
+                                       cmocka_unit_test(a8_gyrodines_converge),
+                                       cmocka_unit_test(rotor_fault_latches_and_holds_the_gimbals)};
     return cmocka_run_group_tests_name("rsp_sil", tests, nullptr, nullptr);
 }

@@ -10,7 +10,8 @@ C_phi, |omega - omega_f f| and |H|, peak |H| and per-axis |H_i|, T at the end, t
 check, the |G| invariant, the flight's r_E, the first DONE, region switches and counters.
 Plots: DIR/xi.png (|xi| and C_phi, truth, with the flight's region), DIR/wheels.png (H_i truth and
 the torque commands), DIR/energy.png (T truth, the flight's T and r_E), DIR/sphere.png (g on the
-unit sphere, the momentum direction seen from the body).
+unit sphere, the momentum direction seen from the body), and with gyrodines DIR/gyrodines.png
+(the gimbal rate commands against u_max, the flight's m_s).
 """
 import os
 
@@ -19,6 +20,8 @@ import numpy as np
 from tools.sil.report import Key, read_log
 
 TORQUE_LSB_NM = 2.0 ** -17      # actuator channels 0..2 (fsw/respin/rsp_iface.py)
+GIMBAL_RATE_LSB_RADPS = 2.0 ** -16   # actuator channels 3..6
+UMAX_RADPS = 0.1745              # gimbal-rate limit (spec 30 §2)
 XI_DONE = 0.01                  # RespinMetrics::kXiDone
 J_Y_KGM2 = 3600.0               # spec 30 §2 (the scenario's J_y: RespinSetup)
 # RespinPlant truth layout (sim/respin/respin_plant.hpp): state[W..W+2] omega_BN_B [rad/s],
@@ -45,6 +48,7 @@ SUMMARY_KEYS = [
     Key("re_abs_max_j", "re_abs_max_j"),
     Key("t_done_s", "t_done_s"),
     Key("cmd_peak_nm", "cmd_peak_nm"),
+    Key("gimbal_rate_peak_radps", "gimbal_rate_peak_radps"),
     Key("rsp_health_or", "rsp_health_sticky"),
 ]
 
@@ -54,7 +58,7 @@ def read(path, lcm_py, mission):
     C = read_log(path, lcm_py, mission, {
         "GNC_TRUTH": lambda m: tru.append((m.utime * 1e-6,) + tuple(m.state[:16])),
         "GNC_CMD": lambda m: cmd.append((m.utime * 1e-6,) + tuple(m.counts[i] if i < m.n_counts else 0
-                                                                  for i in range(3))),
+                                                                  for i in range(7))),
     })
     return dict(common=C, truth=tru, cmd=cmd, tlm=C["tlm"])
 
@@ -119,6 +123,7 @@ def metrics(R, mission, m):
         m["g_rel_err_max"] = float(np.max(np.abs(gn - gn[0]) / gn[0])) if gn[0] > 0 else 0.0
     C = np.array(R["cmd"], dtype=float) if R["cmd"] else np.zeros((0, 4))
     m["cmd_peak_nm"] = float(np.max(np.abs(C[:, 1:4]))) * TORQUE_LSB_NM if len(C) else 0.0
+    m["gimbal_rate_peak_radps"] = float(np.max(np.abs(C[:, 4:8]))) * GIMBAL_RATE_LSB_RADPS if len(C) else 0.0
     m["t_done_s"] = -1.0
     m["a_f_final"] = 0
     m["re_abs_max_j"] = 0.0
@@ -249,4 +254,23 @@ def plots(R, m, out):
     ax.set_zlabel("g_z")
     ax.set_title("G / |G| in body axes (targets +-e_y)")
     _save(fig, out, "sphere.png", paths)
+    C = np.array(R["cmd"], dtype=float) if R["cmd"] else np.zeros((0, 8))
+    if len(C) and np.any(C[:, 4:8] != 0):
+        # gyrodines: the gimbal rate commands against u_max and the singularity measure m_s
+        fig, (a1, a2) = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
+        for k in range(4):
+            a1.plot(C[:, 0], C[:, 4 + k] * GIMBAL_RATE_LSB_RADPS, lw=0.6, label="beta_dot %d" % (k + 1))
+        a1.axhline(UMAX_RADPS, color="k", lw=0.7, ls=":")
+        a1.axhline(-UMAX_RADPS, color="k", lw=0.7, ls=":")
+        a1.set_ylabel("gimbal rate cmd [rad/s]")
+        a1.grid(alpha=0.3)
+        a1.legend(fontsize=8)
+        if L is not None:
+            a2.plot(L["utime"] * 1e-6, L["raw"]["rsp_cmg_ms"] * 2.0 ** -28, lw=0.8, label="m_s (flight)")
+        a2.axhline(0.05, color="r", lw=0.7, ls=":", label="SINGULAR below")
+        a2.set_ylabel("m_s = sqrt det(A A^T)")
+        a2.set_xlabel("time [s]")
+        a2.grid(alpha=0.3)
+        a2.legend(fontsize=8)
+        _save(fig, out, "gyrodines.png", paths)
     return paths

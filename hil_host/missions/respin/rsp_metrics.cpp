@@ -13,7 +13,8 @@ namespace host {
 namespace {
 const char *const kCounters[] = {"rsp_region", "rsp_mode", "rsp_n_switch", "rsp_n_lin", "rsp_n_mid", "rsp_n_far",
                                  "rsp_n_gyro_bad", "rsp_n_gyro_stale", "rsp_n_whl_bad", "rsp_n_whl_est",
-                                 "rsp_n_outlier", "rsp_n_overflow", "rsp_n_clip", "rsp_n_hbound", "rsp_revision"};
+                                 "rsp_n_outlier", "rsp_n_overflow", "rsp_n_clip", "rsp_n_hbound", "rsp_n_singular",
+                                 "rsp_n_rate_limited", "rsp_revision"};
 }  // namespace
 
 RespinMetrics::RespinMetrics(const sim::Scenario &s)
@@ -69,6 +70,9 @@ void RespinMetrics::on_cmd(const gnc::actuator_cmd_v2_t &c)
     for (int i = 0; i < c.n_counts && i < 3; ++i) {
         cmd_peak_nm = std::max(cmd_peak_nm, std::fabs(c.counts[i] * sim::kRespinTorqueLsbNm));
     }
+    for (int i = 3; i < c.n_counts && i < 7; ++i) {
+        gimbal_rate_peak_radps = std::max(gimbal_rate_peak_radps, std::fabs(c.counts[i] * 0x1p-16));
+    }
 }
 
 void RespinMetrics::on_tlm(const std::vector<std::int64_t> &v, double t_s)
@@ -116,6 +120,7 @@ void RespinMetrics::summary(Summary &s) const
     s.add("q3_peak_sqrtkgm", q_peak_sqrtkgm[2], "%.3e");
     s.add("t_done_s", t_done_s, "%.1f");
     s.add("cmd_peak_nm", cmd_peak_nm, "%.6f");
+    s.add("gimbal_rate_peak_radps", gimbal_rate_peak_radps, "%.6f");
     if (!last_.empty()) {
         const TlmLayout &l = tlm_layout(m);
         for (const char *k : kCounters) {

@@ -40,6 +40,7 @@ public:
     double q_peak_sqrtkgm[3] = {0.0, 0.0, 0.0};   // max |q_i| of the array modes (truth; 0 when rigid)
     double t_done_s = -1.0;          // first DONE flag
     double cmd_peak_nm = 0.0;        // max |wheel torque command| (counts -> N m)
+    double gimbal_rate_peak_radps = 0.0;   // max |gimbal rate command| (counts 3..6 -> rad/s)
     std::int64_t a_f_final = 0;
     // The truth trajectory over the first kEarlyS (spec 30 §6 compares SIL and reference there:
     // |dH_i| <= 0.02 N m s, angle(g_fx, g_ref) <= 1e-3 rad; later only metrics).

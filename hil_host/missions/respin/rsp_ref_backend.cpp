@@ -58,7 +58,15 @@ bool RefRespinBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
                         c >= rng_[i].min && c <= rng_[i].max;
         if (ok) { in.valid |= 1u << i; }
         if ((f.status[i] & bridge::kStatusSat) != 0) { in.sat |= 1u << i; }
-        if (i < 3u) { in.gyro_cnt[i] = c; } else { in.whl_cnt[i - 3u] = c; }
+        if (i < 3u) {
+            in.gyro_cnt[i] = c;
+        } else if (i < 6u) {
+            in.whl_cnt[i - 3u] = c;
+        } else if (i < 10u) {
+            in.gimbal_cnt[i - 6u] = c;
+        } else {
+            in.rotor_cnt[i - 10u] = c;
+        }
     }
     const ref::RespinRefOut o = law_.step(in);
     // Telemetry from the double state, rounded to the flight's formats (rsp.h).
@@ -102,6 +110,15 @@ bool RefRespinBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
         t.act_cnt[i] = u;
         out.counts[i] = u;
     }
+    for (std::size_t k = 0; k < 4; ++k) {
+        t.act_cnt[3u + k] = o.gimbal_rate_cnt[k];
+        out.counts[3u + k] = o.gimbal_rate_cnt[k];
+        m.cmg_rate_cnt[k] = o.gimbal_rate_cnt[k];
+    }
+    m.cmg_ms_q28 = q_cnt(o.ms, 0x1p28);
+    m.cmg_s_q16 = q_cnt(o.s_rate, 0x1p16);
+    if ((o.health & RSP_H_SINGULAR) != 0u) { ++m.n_singular; }
+    if ((o.health & RSP_H_RATE_LIMITED) != 0u) { ++m.n_rate_limited; }
     t.mod_health = o.health;
     out.fsw_mode = static_cast<std::int32_t>(FSW_MODE_RESPIN);
     out.tlm_layout_version = static_cast<std::int32_t>(RSP_TLM_LAYOUT);
