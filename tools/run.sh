@@ -4,8 +4,8 @@
 # flight code, plant), then writes the summary and the plots.
 #
 #   tools/run.sh [SCENARIO.yaml ...]
-#       default: sim/observer/scenarios/s0-7_nominal_mphys.yaml (sail detumbling, the observer) and
-#                sim/impulse/scenarios/rendezvous_example.yaml (terminal rendezvous, the impulse scheduler)
+#       default: every registered mission's "run" scenarios (missions.json): today the sail detumbling
+#                (observer), the terminal rendezvous (impulse scheduler) and the nominal wheels respin
 #
 # Output per scenario: build/run/<scenario file name>/ with run.lcmlog (replay: lcm-logplayer),
 # summary.txt and summary.json (the run's live metrics, written by the plant process), the report
@@ -19,7 +19,9 @@ bash tools/bootstrap.sh
 
 scenarios=("$@")
 if ((${#scenarios[@]} == 0)); then
-    scenarios=(sim/observer/scenarios/s0-7_nominal_mphys.yaml sim/impulse/scenarios/rendezvous_example.yaml)
+    # each registered mission's main-job scenarios ("run" in missions.json): a new module adds its own
+    mapfile -t scenarios < <("$ROOT/.venv/bin/python" -B -c \
+        'import tools.iface as i; print("\n".join(s for m in i.missions() for s in m.run))')
 fi
 
 echo "=== build (host preset: the SIL executable and the LCM Python bindings)"

@@ -110,6 +110,7 @@ class Mission(object):
         self.prefix = entry["prefix"]
         self.id = int(entry["id"])
         self.mode = int(entry["mode"])
+        self.run = [str(x) for x in entry.get("run", [])]   # scenarios of the main job (tools/run.sh)
         self.iface_path = os.path.join(ROOT, "fsw", self.module, self.prefix + "_iface.py")
         self.iface = getattr(_load_py(self.iface_path, self.prefix + "_iface"), "MODULE")
         if self.iface.prefix != self.prefix or self.iface.module != self.module:
