@@ -729,6 +729,68 @@ static void energy(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
     }
 }
 
+/* The reporting checks of spec 30 §8 (none changes the command):
+   - HBOUND on every LIN tick for 600 s: near f the clamp should never bind, so H cannot return to H_f
+     (a wheel at its bound with friction, a wrong h_lim): HBOUND_STUCK, a module fault;
+   - the energy floor: |J omega| = |G - H| >= g0 - |H| and T >= |J omega|^2 / (2 J_max) with J_max = J_y,
+     so T < (g0 - |H|)^2 / (2 J_y) - e_alarm means a wrong J, gyro scale or momentum: ENERGY_LOW;
+   - in FAR the relay dissipates (T falls while |H_i| < |G_i|): the T change over each complete 100 s
+     window in FAR is reported, FAR_T_RISE when it is positive. Windows restart on leaving FAR.
+   Durations from 1/Ts (inv_ts_q16, checked against the period): 600 s and 100 s in ticks. */
+static void energy_floor(const rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
+{
+    uint64_t hsq = 0u;
+    uint32_t i;
+    int64_t d;
+    for (i = 0u; i < RSP_N_AX; i++) {
+        int64_t hi = (int64_t)w->h_q20[i];
+        int64_t hi_sq = hi * hi;
+        hsq += (uint64_t)hi_sq;   /* three squares of int32 < 3 2^62 */
+    }
+    d = (int64_t)s->tlm.g0_q20 - (int64_t)fx_isqrt64(hsq);
+    if (d > 0) {
+        /* d^2 < 2^62 (q40) over J_y (q19): q21 < 2^53 (J_y >= 2^19 kg m^2 LSBs), then 2^-32 J with the 1/2 */
+        int64_t d_sq = d * d;
+        uint32_t jy = (uint32_t)p->j_q19[1];   /* > 0: rsp_params_check */
+        uint64_t q21 = fx_udiv_rnd64((uint64_t)d_sq, (uint64_t)jy);
+        int64_t tmin_q32 = fx_shl64_chk((int64_t)q21, 10u, &w->st);
+        if ((s->tlm.t_q32 + p->ealarm_q32) < tmin_q32) {
+            w->h |= RSP_H_ENERGY_LOW;
+        }
+    }
+}
+
+static void report_checks(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
+{
+    uint32_t n100 = (uint32_t)(((uint64_t)(uint32_t)p->inv_ts_q16 * 100u) >> 16);   /* inv_ts < 2^31 */
+    uint32_t n600 = 6u * n100;
+    if ((s->region == RSP_RG_LIN) && ((w->h & RSP_H_HBOUND) != 0u)) {
+        fx_cnt_inc(&s->hbound_lin_run);
+    } else {
+        s->hbound_lin_run = 0u;
+    }
+    if ((n600 > 0u) && (s->hbound_lin_run >= n600)) {
+        w->h |= RSP_H_HBOUND_STUCK;
+    }
+    energy_floor(s, p, w);
+    if (s->region != RSP_RG_FAR) {
+        s->far_win = 0u;
+    } else {
+        if (s->far_win == 0u) {
+            s->far_t0_q32 = s->tlm.t_q32;
+        }
+        fx_cnt_inc(&s->far_win);
+        if (s->far_win > n100) {
+            s->tlm.t_far_d100_q32 = sub64_sat(s->tlm.t_q32, s->far_t0_q32, &w->st);
+            s->far_t0_q32 = s->tlm.t_q32;
+            s->far_win = 1u;
+        }
+    }
+    if ((s->region == RSP_RG_FAR) && (s->tlm.t_far_d100_q32 > 0)) {
+        w->h |= RSP_H_FAR_T_RISE;
+    }
+}
+
 /* rho_G = |G| / g0 - 1 and its first-order low pass (alpha = 2^-drift_sh). */
 static void drift(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
 {
@@ -783,6 +845,7 @@ static bool run_tick(rsp_state_t *s, const rsp_params_t *p, rsp_work_t *w)
             }
         }
         energy(s, p, w);
+        report_checks(s, p, w);
         drift(s, p, w);
         done_tick(s, p, w);
     }

@@ -104,6 +104,7 @@ typedef struct {
     int64_t  t_q32;            /* T = 1/2 (J omega) . omega */
     int64_t  w_q32;            /* work of the internal moment since t0 */
     int64_t  re_q32;           /* r_E = T - T0 - W */
+    int64_t  t_far_d100_q32;   /* T change over the last complete 100 s window in FAR (spec 30 §8) */
     uint32_t done_run;         /* ticks in tolerance in a row */
     uint32_t n_switch;         /* region changes */
     uint32_t n_lin;            /* ticks per region (valid ticks after g0) */
@@ -153,6 +154,9 @@ typedef struct {
     uint32_t follow_run[3];    /* valid ticks in a row with wheel i off its command (spec 30 §8) */
     bool     wheel_fault;      /* RSP_H_WHEEL_FAULT latched until rsp_init: the command is zero */
     uint32_t rotor_run;        /* valid ticks in a row with a rotor speed off nominal */
+    uint32_t hbound_lin_run;   /* valid LIN ticks in a row with HBOUND (HBOUND_STUCK at 600 s) */
+    uint32_t far_win;          /* valid FAR ticks into the current 100 s window (0: none open) */
+    int64_t  far_t0_q32;       /* T at the window's start */
     bool     rotor_fault;      /* RSP_H_ROTOR_FAULT latched until rsp_init: the command is zero */
     rsp_cmg_geom_t cmg_geom;   /* the cluster's H and Jacobian of this tick (kept off the stack) */
     rsp_cmg_out_t  cmg_out;    /* the steering's output of this tick */

@@ -26,6 +26,9 @@
 #define RSP_H_SINGULAR               (0x01000000u)  /* gyrodines: m_s < ms_sing (telemetry only: the damped inverse passes through) */
 #define RSP_H_RATE_LIMITED           (0x02000000u)  /* gyrodines: the gimbal rates scaled by 1/s (direction kept) */
 #define RSP_H_ROTOR_FAULT            (0x04000000u)  /* gyrodines: a rotor speed off nominal by > rotor_tol for n_fault ticks (latched): zero command */
+#define RSP_H_HBOUND_STUCK           (0x08000000u)  /* HBOUND on every LIN tick for 600 s: H cannot return to H_f (fault, law continues) */
+#define RSP_H_ENERGY_LOW             (0x10000000u)  /* T below (g0 - |H|)^2 / (2 J_y) - e_alarm: wrong J, gyro scale or momentum (alarm) */
+#define RSP_H_FAR_T_RISE             (0x20000000u)  /* T rose over the last 100 s in FAR (the far relay must dissipate; report) */
 
 /* rsp_params_check reasons (bits of *why); a table veto's detail is 1 + the bit index. */
 #define RSP_WHY_PERIOD               (0x00000001u)  /* period (zero, or not the executive's) */
@@ -68,8 +71,8 @@
 #define RSP_N_ACT                    7u
 #define RSP_TBL_ID                   0x0B06u
 #define RSP_TBL_LAYOUT               2u
-#define RSP_TLM_BYTES                196u  /* bytes of the block rsp_tlm_wr writes */
+#define RSP_TLM_BYTES                204u  /* bytes of the block rsp_tlm_wr writes */
 #define RSP_TLM_LAYOUT               0x00040002u  /* layout version of the whole telemetry */
-#define RSP_TLM_TOTAL_BYTES          316u  /* bytes of the whole telemetry: header, actuators, health, block */
+#define RSP_TLM_TOTAL_BYTES          324u  /* bytes of the whole telemetry: header, actuators, health, block */
 
 #endif

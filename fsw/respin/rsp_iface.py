@@ -40,6 +40,8 @@ def _tlm():
                     ("clip", "ticks with an axis clipped to M_max"),
                     ("hbound", "ticks with an axis at the momentum bound")):
         f.append(Field("n_" + n, "u32", "t->n_" + n, unit="count", note=note))
+    f += [Field("t_far_d100", "i64", "t->t_far_d100_q32", q=32, unit="J",
+                note="T change over the last complete 100 s in FAR (< 0: the far relay dissipates)")]
     f += [Field("cmg_rate_%d" % (k + 1), "i32", "t->cmg_rate_cnt[%du]" % k, unit="2^-16 rad/s",
                 note="gimbal rate command of gyrodine %d" % (k + 1)) for k in range(4)]
     f += [Field("cmg_ms", "i32", "t->cmg_ms_q28", q=28, note="singularity measure m_s = sqrt det(A A^T)"),
@@ -88,6 +90,9 @@ MODULE = Module(
         Bit("SINGULAR", 0x01000000, "gyrodines: m_s < ms_sing (telemetry only: the damped inverse passes through)"),
         Bit("RATE_LIMITED", 0x02000000, "gyrodines: the gimbal rates scaled by 1/s (direction kept)"),
         Bit("ROTOR_FAULT", 0x04000000, "gyrodines: a rotor speed off nominal by > rotor_tol for n_fault ticks (latched): zero command"),
+        Bit("HBOUND_STUCK", 0x08000000, "HBOUND on every LIN tick for 600 s: H cannot return to H_f (fault, law continues)"),
+        Bit("ENERGY_LOW", 0x10000000, "T below (g0 - |H|)^2 / (2 J_y) - e_alarm: wrong J, gyro scale or momentum (alarm)"),
+        Bit("FAR_T_RISE", 0x20000000, "T rose over the last 100 s in FAR (the far relay must dissipate; report)"),
     ],
     why=[
         Bit("PERIOD", 0x001, "period (zero, or not the executive's)"),

@@ -11,8 +11,8 @@
  * entry; outside it the wheels hold zero torque. The module judges its inputs itself (spec 30 §8:
  * an invalid tick commands zero and keeps region, a_f and latch), so no channel condition sends
  * the executive to SAFE: a 10 s gyro dropout in FAR must not restart a respin hours into its far
- * phase (spec 30 §7 A12). INPUT_FAULT, WHEEL_FAULT, ENERGY_ALARM, OVERFLOW and any fx status raise
- * FSW_H_MODULE.
+ * phase (spec 30 §7 A12). INPUT_FAULT, WHEEL_FAULT, ROTOR_FAULT, ENERGY_ALARM, ENERGY_LOW,
+ * HBOUND_STUCK, OVERFLOW and any fx status raise FSW_H_MODULE.
  * Commit rule: a validated table becomes active at the next step boundary and the law's state
  * (g0, region, a_f, energy) is kept: every table field is a gain, a limit or a threshold read
  * afresh each tick, and g0 is a measurement, not a table value. Telecommand RESET_COUNTERS clears
@@ -21,7 +21,7 @@
 #include "rsp_mission.h"
 
 #define RSP_FAULT_BITS (RSP_H_INPUT_FAULT | RSP_H_WHEEL_FAULT | RSP_H_ROTOR_FAULT | RSP_H_ENERGY_ALARM | \
-                        RSP_H_OVERFLOW | FX_ST_MASK)
+                        RSP_H_ENERGY_LOW | RSP_H_HBOUND_STUCK | RSP_H_OVERFLOW | FX_ST_MASK)
 #define RSP_ENC_MAX    ((int32_t)1048575)    /* gimbal encoder: 2^20 counts per turn */
 #define RSP_ROTOR_MAX  ((int32_t)16777216)   /* rotor speed: 2^24 counts = 65 536 rad/s, far above any rotor */
 

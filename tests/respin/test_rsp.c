@@ -1156,6 +1156,78 @@ UT_TEST(gyrodine_faults)
     UT_EQ(o.gimbal_rate_cnt[1], 0);
 }
 
+/* Reporting checks of spec 30 §8 (the command is not changed by them).
+   HBOUND_STUCK: with the default k the LIN law always pulls a wheel near its bound inwards (m k |H| >
+   m |xi| once |H| > 1.43 N m s), so the test takes k = 1 LSB: then M_x = -m xi_x. From the prime's
+   g = -e_y (a_f = -1), gyro z 320 520 counts (G_z = 51.2 N m s: xi_x = g_z = 0.05, LIN) and wheel x at
+   509 440 counts (4.975 N m s, inside h_lim = 4.98): the law asks M_x = -0.075 N m, the clamp allows
+   >= (4.975 - 4.98) / Ts = -0.05: HBOUND every tick, HBOUND_STUCK from the 6 000th (600 s at 10 Hz). */
+UT_TEST(hbound_stuck_after_600_s_in_lin)
+{
+    rsp_params_t p = params();
+    uint32_t k;
+    rsp_out_t o;
+    p.k_q30 = 1;
+    prime(&p, 1u, C_Y1, W_Y1);
+    for (k = 0u; k < 6000u; k++) {
+        o = step6(&p, (int32_t)(k & 1u), -C_Y1, 320520, 509440 + (int32_t)(k & 1u), -W_Y1, 0);
+        UT_CHECK((o.health & RSP_H_HBOUND) != 0u);
+        if (k < 5999u) {
+            UT_CHECK((o.health & RSP_H_HBOUND_STUCK) == 0u);
+        }
+    }
+    UT_UEQ(g_s.tlm.region, RSP_RG_LIN);
+    UT_TRUE((o.health & RSP_H_HBOUND_STUCK) != 0u);
+}
+
+/* ENERGY_LOW: T >= |J omega|^2 / (2 J_y) >= (g0 - |H|)^2 / (2 J_y) for any true state. From the prime's
+   G_y = -1024 N m s (g0 = 1024, |H| = 0.0038): a gyro y word 0.999 of nominal (1 191 849 counts: T =
+   145.34 J against the floor 145.64 - 0.5) passes; 0.96 of nominal (1 145 320 counts: |G| = 983 N m s,
+   inside the 5 % outlier gate; T = 134.2 J) raises ENERGY_LOW: a -4 % gyro scale error. */
+UT_TEST(energy_floor_flags_a_low_t)
+{
+    rsp_params_t p = params();
+    rsp_out_t o;
+    prime(&p, 1u, C_Y1, W_Y1);
+    o = step6(&p, 0, -1191849, 0, 0, -W_Y1, 0);
+    UT_TRUE((o.health & (RSP_H_ENERGY_LOW | RSP_H_OUTLIER)) == 0u);
+    o = step6(&p, 0, -1145320, 0, 0, -W_Y1, 0);
+    UT_TRUE((o.health & RSP_H_OUTLIER) == 0u);
+    UT_TRUE((o.health & RSP_H_ENERGY_LOW) != 0u);
+}
+
+/* FAR_T_RISE: g = -e_z (FAR) with |omega_z| growing by one gyro count per tick: T = J_z omega_z^2 / 2
+   rises, and the first complete 100 s window (1 000 FAR ticks at 10 Hz) reports its change (about
+   +2 J_z omega dOmega = 670 * 0.2 * 1000 * 2^-22 = +0.032 J) and FAR_T_RISE; the same with |omega_z|
+   shrinking reports a negative change and no bit. Wheel words dither by one count (not stale). */
+UT_TEST(far_t_slope_is_reported)
+{
+    rsp_params_t p = params();
+    rsp_out_t o;
+    uint32_t k;
+    int32_t dir;
+    for (dir = 1; dir >= -1; dir -= 2) {
+        prime(&p, 2u, C_Z02, 0);
+        for (k = 1u; k <= 1001u; k++) {
+            int32_t d = (int32_t)(k & 1u);
+            o = step6(&p, 0, 0, -C_Z02 - (dir * (int32_t)k), d, d, d);
+            if (k < 1001u) {
+                UT_CHECK((o.health & RSP_H_FAR_T_RISE) == 0u);
+                UT_CHECK(g_s.tlm.t_far_d100_q32 == 0);
+            }
+        }
+        UT_UEQ(g_s.tlm.region, RSP_RG_FAR);
+        if (dir > 0) {
+            /* 0.032 J = 1.37e8 in 2^-32 J; within 10 % (the wheel dither and the rounding of T) */
+            UT_TRUE((g_s.tlm.t_far_d100_q32 > INT64_C(123000000)) && (g_s.tlm.t_far_d100_q32 < INT64_C(151000000)));
+            UT_TRUE((o.health & RSP_H_FAR_T_RISE) != 0u);
+        } else {
+            UT_TRUE(g_s.tlm.t_far_d100_q32 < INT64_C(-123000000));
+            UT_TRUE((o.health & RSP_H_FAR_T_RISE) == 0u);
+        }
+    }
+}
+
 int main(void)
 {
     UT_CASES(cases) = {
@@ -1187,6 +1259,9 @@ int main(void)
         UT_CASE(g_filter_propagates_with_the_body_rate),
         UT_CASE(gyrodines_far_law_is_steered),
         UT_CASE(gyrodine_faults),
+        UT_CASE(hbound_stuck_after_600_s_in_lin),
+        UT_CASE(energy_floor_flags_a_low_t),
+        UT_CASE(far_t_slope_is_reported),
     };
     return UT_RUN("rsp", cases);
 }
