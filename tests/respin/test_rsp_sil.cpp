@@ -121,22 +121,25 @@ SIM_TEST(a3_printed_law_ends_near_minus_f)
     EXPECT_TRUE(m.t_settle_s < 0.0);
 }
 
+// The whole nominal run (12 000 s): spec 30 §7 A12 asks that the respin still converges after it.
 SIM_TEST(a12_gyro_dropout_in_far_is_flown_through)
 {
-    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_short.yaml");
+    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/respin_nominal.yaml");
     s.faults.nan_s = {{300.0, 310.0}};
     s.faults.nan_channel = 0u;
     const sil::InprocResult fx = fly(s, "fixed");
-    std::printf("gyro dropout: plant nan frames %llu, fsw n_chan_rej %.0f, gyro_bad %.0f, region %.0f\n",
+    std::printf("gyro dropout: plant nan frames %llu, fsw n_chan_rej %.0f, gyro_bad %.0f, settled %.1f s\n",
                 static_cast<unsigned long long>(fx.plant.nan_frames), fx.summary.number("fsw_n_chan_rej"),
-                fx.summary.number("fsw_rsp_n_gyro_bad"), fx.summary.number("fsw_rsp_region"));
-    common_checks(fx, 6000);
+                fx.summary.number("fsw_rsp_n_gyro_bad"), mm(fx).t_settle_s);
+    common_checks(fx, 120000);
     EXPECT_EQ_INT(fx.plant.nan_frames, 100);
     EXPECT_EQ_INT(fx.summary.number("fsw_rsp_n_gyro_bad"), 100);
     EXPECT_TRUE((mm(fx).health_or & RSP_H_GYRO_BAD) != 0u);
     EXPECT_TRUE((mm(fx).health_or & RSP_H_INPUT_FAULT) != 0u);
-    EXPECT_EQ_INT(fx.summary.number("fsw_rsp_region"), RSP_RG_FAR);
     EXPECT_TRUE(mm(fx).cmd_peak_nm > 0.1);
+    // and the respin converges as without the dropout (measured: settled 6 822.1 s against 6 785.1 s)
+    EXPECT_TRUE(mm(fx).t_settle_s >= 0.0 && mm(fx).t_settle_s <= 8000.0);
+    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
 }
 
 // A12 (part): a 10 s wheel-speed dropout (wheel x) in MID. In the nominal run the region is MID
