@@ -1,44 +1,106 @@
-"""Interface of the pd module (mission HOLD): the single source of its names and its
-telemetry block. Not flight code: `python -m tools.iface c` turns it into pd_ids.h and
-pd_tlm.c (committed; CTest golden_iface_regen checks them), the build turns it into the
-host's tables, and Python tools read it through tools.iface (tools/iface/schema.py documents
-every constructor; fsw/impulse/imp_iface.py shows enums and telecommands with arguments).
+"""Interface of the pd module (mission HOLD, spec 40): the single source of its names and its
+telemetry block. Not flight code: `python -m tools.iface c` turns it into pd_ids.h and pd_tlm.c
+(committed; CTest golden_iface_regen checks them), the build turns it into the host's tables, and
+Python tools read it through tools.iface (tools/iface/schema.py documents every constructor).
+
+Three channels (k = yaw, roll, pitch), one law instance each (pd.h). The telemetry block carries
+each channel's sample; the health word of the mission is the OR of the three channels' words.
 """
-from tools.iface.schema import Bit, Chan, Field, Module, tc
+from tools.iface.schema import Arg, Bit, Chan, Field, Module, enum, tc
+
+CHANNELS = ("yaw", "roll", "pitch")
 
 
 def _tlm():
-    return [Field("rate", "i32", "t->rate_cnt", unit="2^-20 rad/s", note="body rate of the last step"),
-            Field("u", "i32", "t->u_cnt", unit="2^-16 N m", note="torque command of the last step"),
-            Field("n_skip", "u32", "t->n_skip", unit="count", note="steps without a valid rate"),
-            Field("n_limited", "u32", "t->n_limited", unit="count", note="steps with the command at its limit"),
-            Field("health_sticky", "u32", "t->health_sticky"),
-            Field("revision", "u32", "t->revision", note="table revision in use")]
+    f = []
+    for k, ch in enumerate(CHANNELS):
+        c = "t->ch[%du]." % k
+        f += [Field("%s_y" % ch, "i32", c + "y_q30", q=30, unit="rad", note="attitude sample in use"),
+              Field("%s_dy" % ch, "i32", c + "dy_q30", q=30, unit="rad", note="y_k - y_k-1 (0 after a restart)"),
+              Field("%s_m" % ch, "i32", c + "m_q28", q=28, unit="N m", note="gimbal torque command"),
+              Field("%s_k2" % ch, "u32", c + "k2_q22", q=22, unit="s", note="derivative gain in use"),
+              Field("%s_health" % ch, "u32", c + "health", note="the channel's health word of the last sample"),
+              Field("%s_health_sticky" % ch, "u32", c + "health_sticky", note="OR since init or RESET_COUNTERS"),
+              Field("%s_miss" % ch, "u32", c + "miss_cnt", unit="count", note="samples missing (invalid or stale)"),
+              Field("%s_stale" % ch, "u32", c + "stale_cnt", unit="count", note="samples refused as frozen"),
+              Field("%s_range_rej" % ch, "u32", c + "range_rej", unit="count", note="|y| > y_lim or saturated"),
+              Field("%s_rate_rej" % ch, "u32", c + "rate_rej", unit="count", note="|dy| > dy_max"),
+              Field("%s_period_rej" % ch, "u32", c + "period_rej", unit="count",
+                    note="control periods with > n_bad_max invalid samples"),
+              Field("%s_trq_sat" % ch, "u32", c + "trq_sat_cnt", unit="count", note="samples at +-M_max"),
+              Field("%s_beta_lim" % ch, "u32", c + "beta_lim_cnt", unit="count",
+                    note="samples with |beta| >= beta_lim (outward torque zeroed)")]
+    f += [Field("revision", "u32", "t->revision", note="table revision in use")]
+    return f
 
 
 MODULE = Module(
     module="pd",
     prefix="pd",
-    doc="HOLD: single-axis rate damper (module template)",
+    doc="HOLD: gyrodine PD channels with a scheduled derivative gain (spec 40)",
     tlm_type="pd_tlm_t",
-    tlm_layout=1,
+    tlm_layout=2,
     tlm=_tlm(),
-    sensors=[Chan("omega_BN_B_x", "2^-20 rad/s", "rate gyro x: body rate wrt inertial, body axes")],
-    actuators=[Chan("tau_cmd_B_x", "2^-16 N m", "torque command about body x")],
+    sensors=[Chan("psi_BN_yaw", "2^-26 rad", "attitude, yaw channel"),
+             Chan("phi_BN_roll", "2^-26 rad", "attitude, roll channel"),
+             Chan("theta_BN_pitch", "2^-26 rad", "attitude, pitch channel"),
+             Chan("beta_g_yaw", "2^-24 rad", "gimbal encoder, yaw gyrodine"),
+             Chan("beta_g_roll", "2^-24 rad", "gimbal encoder, roll gyrodine"),
+             Chan("beta_g_pitch", "2^-24 rad", "gimbal encoder, pitch gyrodine")],
+    actuators=[Chan("m_g_yaw", "2^-20 N m", "gimbal torque command, yaw gyrodine"),
+               Chan("m_g_roll", "2^-20 N m", "gimbal torque command, roll gyrodine"),
+               Chan("m_g_pitch", "2^-20 N m", "gimbal torque command, pitch gyrodine")],
     health=[
-        Bit("MEAS_SKIP", 0x00000100, "no valid rate this step: zero torque"),
-        Bit("CMD_LIMITED", 0x00000200, "command at its limit this step"),
-        Bit("CMD_LIMIT_PERSIST", 0x00000400, "command limited for n_sat steps"),
+        Bit("LAW", 0x00000300, "law mode (PD_LAW_*)"),
+        Bit("SRC", 0x00000C00, "gain source (PD_SRC_*)"),
+        Bit("FEST", 0x00003000, "estimator state (0: no estimator in this build)"),
+        Bit("STALE", 0x00004000, "no usable sample this step (missing, stale, rejected): torque held, then zero"),
+        Bit("FROZEN", 0x00008000, "attitude bit-identical for n_frozen samples under torque: refused"),
+        Bit("TRQ_SAT", 0x00010000, "command clamped to +-M_max (the designated saturation point)"),
+        Bit("BETA_WARN", 0x00020000, "|beta| > beta_warn: the linear model is strained"),
+        Bit("BETA_LIM", 0x00040000, "|beta| >= beta_lim: outward torque zeroed"),
+        Bit("FEST_FAULT", 0x00080000, "estimator fault (reserved: no estimator in this build)"),
+        Bit("FALLBACK_GAIN", 0x00100000, "k2 is k2_cold"),
+        Bit("RETUNE", 0x00200000, "k2 changed at this sample (pulse)"),
+        Bit("TABLE_DEFAULT", 0x00400000, "flying the boot table"),
+        Bit("REJECT", 0x00800000, "this sample was refused (range or rate)"),
+        Bit("COAST", 0x01000000, "missing for more than n_hold samples: zero torque"),
+        Bit("PERIOD_BAD", 0x02000000, "averaged modes: the last control period had too many invalid samples"),
     ],
     why=[
-        Bit("PERIOD", 0x01, "period (zero, or not the executive's)"),
-        Bit("GAIN", 0x02, "gain outside (0, 2^24]"),
-        Bit("LIMIT", 0x04, "torque limit outside (0, 2^24]"),
-        Bit("SENSOR", 0x08, "gyro full scale not positive"),
-        Bit("FAULT", 0x10, "n_sat zero"),
+        Bit("PERIOD", 0x01, "period: zero, not the executive's, or 1/Ty not within 1 LSB of n_div period_us"),
+        Bit("GAIN", 0x02, "gain: k0 k1 >= 2^10, k0 k2_max / Ty >= 2^16, or k2 order (min <= nom, cold <= max)"),
+        Bit("LIMIT", 0x04, "torque or sensor limit out of range"),
+        Bit("MODE", 0x08, "law or gain source unknown, ADAPTIVE without an estimator, or schedule law != law"),
+        Bit("SCHED", 0x10, "schedule: node above k2_max, table increasing in f, or node spacing zero"),
+        Bit("NY", 0x20, "n_y not a power of two in [2, 64], or n_bad_max >= n_y"),
+        Bit("CAP", 0x40, "roll k2_max above its sampled-mode cap (150 s)"),
+        Bit("FAULT", 0x80, "fault thresholds: n_hold, n_frozen or beta limits"),
     ],
-    commands=[tc("RESET_COUNTERS", 1, "clear the step counters and the sticky health of the module")],
+    enums=[
+        enum("law", "PD_LAW_", [("FAST", 0, "P and D on every sample (shipped)"),
+                                ("FAST_AVGP", 1, "P on the last period's mean, D every sample"),
+                                ("LITERAL", 2, "the source's averaged law, held T0 (demonstration only)")],
+             "law mode (spec 40 §3)"),
+        enum("src", "PD_SRC_", [("FIXED", 0, "k2_nom of the table or SET_K2"),
+                                ("GROUND", 1, "the schedule at the commanded f"),
+                                ("ADAPTIVE", 2, "the schedule at the estimate (refused: no estimator yet)")],
+             "gain source (spec 40 §4.2)"),
+    ],
+    commands=[
+        tc("RESET_COUNTERS", 1, "clear the channels' counters and sticky health"),
+        tc("SET_SOURCE", 2, "gain source FIXED (0) or GROUND (1); takes effect at the next sample", args=[
+            Arg("src", scale=1.0, lo=0.0, hi=1.0, required=True, unit="PD_SRC_*")]),
+        tc("SET_F", 3, "GROUND at this commanded f_min", args=[
+            Arg("f_hz", scale=1.0e6, lo=0.0, hi=0.5, required=True, unit="1e-6 Hz")]),
+        tc("SET_K2", 4, "FIXED at these k2 (yaw, roll, pitch), each limited to [k2_min, k2_max]", args=[
+            Arg("k2_s", scale=256.0, lo=0.0, hi=1023.0, n=3, required=True, unit="2^-8 s")]),
+    ],
     table_id=0x0B07,
-    table_layout=1,
-    table_fields=["period_us", "rate_max_cnt", "gain_q16", "u_max_cnt", "n_sat", "spare"],
+    table_layout=2,
+    table_fields=(["period_us", "inv_ty_q22", "law", "src", "sched_law", "ch_mask", "n_y", "n_bad_max", "n_div",
+                   "n_hold", "n_frozen", "y_lim_q30", "dy_max_q30", "m_max_q28", "m_frozen_q28", "beta_warn_q24",
+                   "beta_lim_q24", "f0_q32", "df_inv_q16", "f_ground_q32"] +
+                  ["%s_%s" % (ch, n) for ch in CHANNELS
+                   for n in ("k0_q22", "k1_q22", "k2_nom_q22", "k2_cold_q22", "k2_min_q22", "k2_max_q22")]),
 )

@@ -1,32 +1,73 @@
 /*
- * pd_table.c — the pd parameter table on the wire (spec 00 §3.2).
+ * pd_table.c — the pd parameter table on the wire (spec 00 §3.2, spec 40 §4.1 item 5).
  *
- * table_id PD_TBL_ID, layout_version PD_TBL_LAYOUT, payload PD_TBL_PAYLOAD
- * (20) bytes, little-endian, field by field (never a struct copy). The header revision becomes
- * pd_params_t.revision.
+ * table_id PD_TBL_ID, layout_version PD_TBL_LAYOUT, payload PD_TBL_PAYLOAD (356) bytes,
+ * little-endian, field by field (never a struct copy). The header revision becomes
+ * pd_common_t.revision.
  *
- *   off  type  field           limits (the loader refuses anything outside, naming the field)
+ *   off  type  field           loader limits (the loader refuses anything outside, naming the field)
  *     0  u32   period_us       [1000, 1000000]
- *     4  i32   rate_max_cnt    [1, INT32_MAX]
- *     8  i32   gain_q16        [1, 2^24]
- *    12  i32   u_max_cnt       [1, 2^24]
- *    16  u16   n_sat           [1, 65535]
- *    18  u16   spare           [0, 0]
+ *     4  u32   inv_ty_q22      [1, 2^32 - 1]
+ *     8  u8    law             [0, 2]       PD_LAW_*
+ *     9  u8    src             [0, 2]       PD_SRC_* (ADAPTIVE then refused by pd_params_check)
+ *    10  u8    sched_law       [0, 2]
+ *    11  u8    ch_mask         [0, 7]
+ *    12  u8    n_y             [2, 64]
+ *    13  u8    n_bad_max       [0, 63]
+ *    14  u16   n_div           [1, 64]
+ *    16  u16   n_hold          [0, 1000]
+ *    18  u16   n_frozen        [2, 65535]
+ *    20  i32   y_lim_q30       [1, 2^29]
+ *    24  i32   dy_max_q30      [1, 2^24]
+ *    28  i32   m_max_q28       [1, 2^30]
+ *    32  i32   m_frozen_q28    [0, 2^30]
+ *    36  i32   beta_warn_q24   [1, pi 2^24]
+ *    40  i32   beta_lim_q24    [1, pi 2^24]
+ *    44  u32   f0_q32          [0, 2^31 - 1]
+ *    48  u32   df_inv_q16      [1, 2^31 - 1]
+ *    52  u32   f_ground_q32    [0, 2^31 - 1]
+ *    56  3 x 100 B, channel yaw, roll, pitch:
+ *          u32 k0_q22, k1_q22, k2_nom_q22, k2_cold_q22, k2_min_q22, k2_max_q22   [0, 1023 2^22]
+ *          u32 k2_node_q22[19]   (range, order and cap: pd_params_check)
  *
- * pd_params_check (the executive's module check on every candidate) repeats the ranges for
- * tables that never went through the loader, and checks the period against the executive's.
+ * pd_params_check (the executive's module check on every candidate, per channel) checks the
+ * invariants the limits cannot: 1/Ty against period_us, gain order, the accumulator bounds, the
+ * monotone schedule, n_y a power of two, the law the schedule was made for; the adapter adds the
+ * roll cap.
  */
 #include "pd_mission.h"
 
-#define I32MAX ((int64_t)INT32_MAX)
+#define K_MAX ((int64_t)PD_K_MAX_Q22)
+#define U31   ((int64_t)0x7FFFFFFF)
+#define PI_Q24 ((int64_t)52707179)   /* pi 2^24, rounded up: beta limits at most one turn / 2 */
 
 static const fsw_field_lim_t PD_LIMS[] = {
-    {0u, FSW_FT_U32, 1000, 1000000},                    /* 0 period_us */
-    {4u, FSW_FT_I32, 1, I32MAX},                        /* 1 rate_max_cnt */
-    {8u, FSW_FT_I32, 1, (int64_t)PD_GAIN_MAX_Q16},    /* 2 gain_q16 */
-    {12u, FSW_FT_I32, 1, (int64_t)PD_U_MAX_CNT},      /* 3 u_max_cnt */
-    {16u, FSW_FT_U16, 1, 65535},                        /* 4 n_sat */
-    {18u, FSW_FT_U16, 0, 0},                            /* 5 spare */
+    {0u, FSW_FT_U32, 1000, 1000000},          /* 0 period_us */
+    {4u, FSW_FT_U32, 1, (int64_t)UINT32_MAX},  /* 1 inv_ty_q22 */
+    {8u, FSW_FT_U8, 0, 2},                    /* 2 law */
+    {9u, FSW_FT_U8, 0, 2},                    /* 3 src */
+    {10u, FSW_FT_U8, 0, 2},                   /* 4 sched_law */
+    {11u, FSW_FT_U8, 0, 7},                   /* 5 ch_mask */
+    {12u, FSW_FT_U8, 2, 64},                  /* 6 n_y */
+    {13u, FSW_FT_U8, 0, 63},                  /* 7 n_bad_max */
+    {14u, FSW_FT_U16, 1, 64},                 /* 8 n_div */
+    {16u, FSW_FT_U16, 0, 1000},               /* 9 n_hold */
+    {18u, FSW_FT_U16, 2, 65535},              /* 10 n_frozen */
+    {20u, FSW_FT_I32, 1, (int64_t)PD_Y_MAX_Q30},    /* 11 y_lim_q30 */
+    {24u, FSW_FT_I32, 1, (int64_t)PD_DY_MAX_Q30},   /* 12 dy_max_q30 */
+    {28u, FSW_FT_I32, 1, (int64_t)PD_M_MAX_Q28},    /* 13 m_max_q28 */
+    {32u, FSW_FT_I32, 0, (int64_t)PD_M_MAX_Q28},    /* 14 m_frozen_q28 */
+    {36u, FSW_FT_I32, 1, PI_Q24},             /* 15 beta_warn_q24 */
+    {40u, FSW_FT_I32, 1, PI_Q24},             /* 16 beta_lim_q24 */
+    {44u, FSW_FT_U32, 0, U31},                /* 17 f0_q32 */
+    {48u, FSW_FT_U32, 1, U31},                /* 18 df_inv_q16 */
+    {52u, FSW_FT_U32, 0, U31},                /* 19 f_ground_q32 */
+    {56u, FSW_FT_U32, 0, K_MAX}, {60u, FSW_FT_U32, 0, K_MAX}, {64u, FSW_FT_U32, 0, K_MAX},     /* yaw */
+    {68u, FSW_FT_U32, 0, K_MAX}, {72u, FSW_FT_U32, 0, K_MAX}, {76u, FSW_FT_U32, 0, K_MAX},
+    {156u, FSW_FT_U32, 0, K_MAX}, {160u, FSW_FT_U32, 0, K_MAX}, {164u, FSW_FT_U32, 0, K_MAX}, /* roll */
+    {168u, FSW_FT_U32, 0, K_MAX}, {172u, FSW_FT_U32, 0, K_MAX}, {176u, FSW_FT_U32, 0, K_MAX},
+    {256u, FSW_FT_U32, 0, K_MAX}, {260u, FSW_FT_U32, 0, K_MAX}, {264u, FSW_FT_U32, 0, K_MAX}, /* pitch */
+    {268u, FSW_FT_U32, 0, K_MAX}, {272u, FSW_FT_U32, 0, K_MAX}, {276u, FSW_FT_U32, 0, K_MAX},
 };
 
 const fsw_table_desc_t PD_TBL_DESC = {
@@ -35,18 +76,47 @@ const fsw_table_desc_t PD_TBL_DESC = {
     NULL, 0u,
 };
 
-uint32_t pd_table_encode(const pd_params_t *p, uint32_t revision, uint8_t *img, uint32_t cap)
+uint32_t pd_table_encode(const pd_table_t *t, uint32_t revision, uint8_t *img, uint32_t cap)
 {
     uint32_t n = 0u;
-    if ((p != NULL) && (img != NULL) && (cap >= (FSW_TABLE_HDR_BYTES + PD_TBL_PAYLOAD))) {
+    if ((t != NULL) && (img != NULL) && (cap >= (FSW_TABLE_HDR_BYTES + PD_TBL_PAYLOAD))) {
+        const pd_common_t *c = &t->c;
         fsw_wr_t w;
+        uint32_t k;
+        uint32_t i;
         fsw_wr_init(&w, &img[FSW_TABLE_HDR_BYTES], PD_TBL_PAYLOAD);
-        fsw_wr_u32(&w, p->period_us);
-        fsw_wr_i32(&w, p->rate_max_cnt);
-        fsw_wr_i32(&w, p->gain_q16);
-        fsw_wr_i32(&w, p->u_max_cnt);
-        fsw_wr_u16(&w, p->n_sat);
-        fsw_wr_u16(&w, 0u);
+        fsw_wr_u32(&w, c->period_us);
+        fsw_wr_u32(&w, c->inv_ty_q22);
+        fsw_wr_u8(&w, c->law);
+        fsw_wr_u8(&w, c->src);
+        fsw_wr_u8(&w, c->sched_law);
+        fsw_wr_u8(&w, c->ch_mask);
+        fsw_wr_u8(&w, c->n_y);
+        fsw_wr_u8(&w, c->n_bad_max);
+        fsw_wr_u16(&w, c->n_div);
+        fsw_wr_u16(&w, c->n_hold);
+        fsw_wr_u16(&w, c->n_frozen);
+        fsw_wr_i32(&w, c->y_lim_q30);
+        fsw_wr_i32(&w, c->dy_max_q30);
+        fsw_wr_i32(&w, c->m_max_q28);
+        fsw_wr_i32(&w, c->m_frozen_q28);
+        fsw_wr_i32(&w, c->beta_warn_q24);
+        fsw_wr_i32(&w, c->beta_lim_q24);
+        fsw_wr_u32(&w, c->f0_q32);
+        fsw_wr_u32(&w, c->df_inv_q16);
+        fsw_wr_u32(&w, c->f_ground_q32);
+        for (k = 0u; k < PD_N_CH; k++) {
+            const pd_gains_t *g = &t->ch[k];
+            fsw_wr_u32(&w, g->k0_q22);
+            fsw_wr_u32(&w, g->k1_q22);
+            fsw_wr_u32(&w, g->k2_nom_q22);
+            fsw_wr_u32(&w, g->k2_cold_q22);
+            fsw_wr_u32(&w, g->k2_min_q22);
+            fsw_wr_u32(&w, g->k2_max_q22);
+            for (i = 0u; i < PD_N_NODES; i++) {
+                fsw_wr_u32(&w, g->k2_node_q22[i]);
+            }
+        }
         if ((!w.err) && (w.pos == PD_TBL_PAYLOAD)) {
             fsw_table_write_header(img, (uint16_t)PD_TBL_ID, (uint16_t)PD_TBL_LAYOUT,
                                    PD_TBL_PAYLOAD, revision);
@@ -56,19 +126,48 @@ uint32_t pd_table_encode(const pd_params_t *p, uint32_t revision, uint8_t *img, 
     return n;
 }
 
-fsw_rc_t pd_table_decode(const uint8_t *payload, uint32_t len, uint32_t revision, pd_params_t *p)
+fsw_rc_t pd_table_decode(const uint8_t *payload, uint32_t len, uint32_t revision, pd_table_t *t)
 {
     fsw_rc_t rc = FSW_ERR_ARG;
-    if ((payload != NULL) && (p != NULL) && (len == PD_TBL_PAYLOAD)) {
+    if ((payload != NULL) && (t != NULL) && (len == PD_TBL_PAYLOAD)) {
+        pd_common_t *c = &t->c;
         fsw_rd_t r;
+        uint32_t k;
+        uint32_t i;
         fsw_rd_init(&r, payload, len);
-        p->period_us = fsw_rd_u32(&r);
-        p->rate_max_cnt = fsw_rd_i32(&r);
-        p->gain_q16 = fsw_rd_i32(&r);
-        p->u_max_cnt = fsw_rd_i32(&r);
-        p->n_sat = fsw_rd_u16(&r);
-        (void)fsw_rd_u16(&r);   /* spare */
-        p->revision = revision;
+        c->period_us = fsw_rd_u32(&r);
+        c->inv_ty_q22 = fsw_rd_u32(&r);
+        c->law = fsw_rd_u8(&r);
+        c->src = fsw_rd_u8(&r);
+        c->sched_law = fsw_rd_u8(&r);
+        c->ch_mask = fsw_rd_u8(&r);
+        c->n_y = fsw_rd_u8(&r);
+        c->n_bad_max = fsw_rd_u8(&r);
+        c->n_div = fsw_rd_u16(&r);
+        c->n_hold = fsw_rd_u16(&r);
+        c->n_frozen = fsw_rd_u16(&r);
+        c->y_lim_q30 = fsw_rd_i32(&r);
+        c->dy_max_q30 = fsw_rd_i32(&r);
+        c->m_max_q28 = fsw_rd_i32(&r);
+        c->m_frozen_q28 = fsw_rd_i32(&r);
+        c->beta_warn_q24 = fsw_rd_i32(&r);
+        c->beta_lim_q24 = fsw_rd_i32(&r);
+        c->f0_q32 = fsw_rd_u32(&r);
+        c->df_inv_q16 = fsw_rd_u32(&r);
+        c->f_ground_q32 = fsw_rd_u32(&r);
+        c->revision = revision;
+        for (k = 0u; k < PD_N_CH; k++) {
+            pd_gains_t *g = &t->ch[k];
+            g->k0_q22 = fsw_rd_u32(&r);
+            g->k1_q22 = fsw_rd_u32(&r);
+            g->k2_nom_q22 = fsw_rd_u32(&r);
+            g->k2_cold_q22 = fsw_rd_u32(&r);
+            g->k2_min_q22 = fsw_rd_u32(&r);
+            g->k2_max_q22 = fsw_rd_u32(&r);
+            for (i = 0u; i < PD_N_NODES; i++) {
+                g->k2_node_q22[i] = fsw_rd_u32(&r);
+            }
+        }
         if ((!r.err) && (r.pos == len)) {
             rc = FSW_OK;
         } else {

@@ -4,6 +4,8 @@
 
 #include "pd.h"
 
-extern const pd_params_t PD_TBL_DEFAULT;   /* pd_default */
+extern const pd_table_t PD_TBL_DEFAULT;   /* pd_default */
+extern const pd_table_t PD_TBL_LITERAL;   /* pd_literal */
+extern const pd_table_t PD_TBL_AVGP;   /* pd_avgp */
 
 #endif /* FSW_PD_TABLES_H */

@@ -129,16 +129,26 @@ Plant continuous(const Channel &ch, double f_hz)
     return p;
 }
 
+DiscreteN zoh(const Eigen::MatrixXd &A, const Eigen::MatrixXd &B, double Ty)
+{
+    const Eigen::Index ns = A.rows(), nu = B.cols();
+    Eigen::MatrixXd blk = Eigen::MatrixXd::Zero(ns + nu, ns + nu);
+    blk.topLeftCorner(ns, ns) = A * Ty;
+    blk.topRightCorner(ns, nu) = B * Ty;
+    const Eigen::MatrixXd E = blk.exp();
+    DiscreteN d;
+    d.Ad = E.topLeftCorner(ns, ns);
+    d.Bd = E.topRightCorner(ns, nu);
+    d.Ty = Ty;
+    return d;
+}
+
 Discrete discretise(const Plant &p, double Ty)
 {
-    const Eigen::Index ns = p.A.rows();
-    Eigen::MatrixXd blk = Eigen::MatrixXd::Zero(ns + 1, ns + 1);
-    blk.topLeftCorner(ns, ns) = p.A * Ty;
-    blk.topRightCorner(ns, 1) = p.B * Ty;
-    const Eigen::MatrixXd E = blk.exp();
+    const DiscreteN z = zoh(p.A, p.B, Ty);
     Discrete d;
-    d.Ad = E.topLeftCorner(ns, ns);
-    d.Bd = E.topRightCorner(ns, 1);
+    d.Ad = z.Ad;
+    d.Bd = z.Bd.col(0);
     d.omega = p.omega;
     d.Ty = Ty;
     return d;

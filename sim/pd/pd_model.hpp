@@ -69,6 +69,15 @@ struct Discrete {
 };
 // Exact ZOH: one block exponential of [[A, B], [0, 0]] Ty.
 Discrete discretise(const Plant &p, double Ty);
+
+// The same exact ZOH for any number of inputs (the columns of B): s_{k+1} = Ad s_k + Bd u_k with u
+// held over [t_k, t_k + Ty). discretise(Plant) is this with one column (the one implementation).
+struct DiscreteN {
+    Eigen::MatrixXd Ad;
+    Eigen::MatrixXd Bd;
+    double Ty = 0.25;
+};
+DiscreteN zoh(const Eigen::MatrixXd &A, const Eigen::MatrixXd &B, double Ty);
 Discrete discretise(const Channel &ch, double f_hz);
 
 // ---- §2.3 rigid analysis --------------------------------------------------------------------------

@@ -1,8 +1,18 @@
-// pd_ref.hpp — the HOLD law in double precision: the reference the fixed-point flight
-// code is proven against (golden tests, the reference backend of `sil run --fsw ref`). It reads
-// the same table, dequantised: K = gain_q16 / 2^12 N m s, u_max = u_max_cnt * 2^-16 N m.
+// pd_ref.hpp — one HOLD channel in double precision (spec 40 §3, §4.2, §5, §8): the reference the
+// fixed-point flight code (fsw/pd/pd.c) is proven against (golden G1 / G2 in tests/pd, and the
+// reference backend of `sil run --fsw ref`). It reads the same table, dequantised, and the same
+// counts; every rule of the flight channel (accept / refuse, hold, coast, frozen, the control period,
+// the beta limit, the clamp) is written out again here from the spec, in double.
+//
+// One deliberate sharing with the flight code: the gains G_P = k0 k1 and G_D = k0 k2 / Ty are quantised
+// to 2^-16 N m/rad, as the spec's formats fix them (§5 table: uq16), so the golden comparison measures the
+// law's arithmetic and not the gain format (G_P's quantum times |y| <= 0.5 rad alone is 2^-17 N m, 2^11 q28
+// LSB). The averaged modes use the exact mean.
 #ifndef SIM_PD_REF_HPP
 #define SIM_PD_REF_HPP
+
+#include <array>
+#include <cstdint>
 
 extern "C" {
 #include "pd.h"
@@ -10,21 +20,78 @@ extern "C" {
 
 namespace ref {
 
-struct PdTable {
-    double k_nms = 0.0;        // tau = -K omega
-    double u_max_nm = 0.0;
-    double rate_max_radps = 0.0;
-    unsigned n_sat = 0u;
+// One channel's table, dequantised (SI units).
+struct PdChannelTable {
+    int law = PD_LAW_FAST, src = PD_SRC_FIXED, sched_law = PD_LAW_FAST;
+    double Ty = 0.25;             // n_div period [s]
+    int n_y = 16, n_bad_max = 4, n_hold = 1, n_frozen = 40;
+    double y_lim = 0.5, dy_max = 0.015625, m_max = 2.0, m_frozen = 0.01;   // rad, rad, N m, N m
+    double beta_warn = 0.5, beta_lim = 0.785398;                          // rad
+    double f0 = 0.01, df = 0.005, f_ground = 0.05;                        // Hz
+    double k0 = 2.0, k1 = 20.0, k2_nom = 150.0, k2_cold = 150.0, k2_min = 0.0, k2_max = 1000.0;
+    std::array<double, PD_N_NODES> k2_node{};
+    std::uint32_t revision = 0;
+};
+PdChannelTable dequantise(const pd_params_t &p);
+
+// The schedule: linear in f between the nodes at the format's 16-bit fraction (pd_ref.cpp says why),
+// clamped at the end nodes and to [k2_min, k2_max]; and the continuous interpolation for comparison.
+double pd_sched_k2(const PdChannelTable &t, double f_hz);
+double pd_sched_k2_continuous(const PdChannelTable &t, double f_hz);
+// The gains as their formats hold them (2^-16 N m/rad): G_P and G_D for a k2 [s].
+double pd_gain_p(const PdChannelTable &t);
+double pd_gain_d(const PdChannelTable &t, double k2);
+
+struct PdRefIn {
+    std::int32_t y_cnt = 0;       // 2^-26 rad
+    bool y_valid = false, y_sat = false;
+    std::int32_t beta_cnt = 0;    // 2^-24 rad
+    bool beta_valid = false;
 };
 
-struct PdOut {
-    double tau_nm = 0.0;
-    bool limited = false;
+struct PdRefOut {
+    double m_nm = 0.0;
+    std::uint32_t health = 0u;    // PD_H_* (bits 8..; no fx status in double)
 };
 
-PdTable dequantise(const pd_params_t &p);
-// The command for a measured body rate (rad/s).
-PdOut pd_law(const PdTable &t, double omega_radps);
+class PdRefChannel {
+public:
+    explicit PdRefChannel(const PdChannelTable &t);
+    void init();
+    PdRefOut step(const PdRefIn &in);
+    // n samples never reached the channel (as pd_note_gap): missing, invalid in their period.
+    void note_gap(std::uint32_t n);
+    // FIXED, or GROUND when the schedule was made for the law in use (as pd_set_source).
+    bool set_source(int src)
+    {
+        const bool ok = src == PD_SRC_FIXED || (src == PD_SRC_GROUND && t_.sched_law == t_.law);
+        if (ok) { src_ = src; }
+        return ok;
+    }
+    void set_f_ground(double f_hz) { f_ground_ = f_hz; }
+    void set_k2_fixed(double k2);
+    double k2() const { return k2_; }
+    // Counters of spec 40 §8 (as pd_ch_tlm_t).
+    std::uint32_t miss = 0, stale = 0, range_rej = 0, rate_rej = 0, period_rej = 0, trq_sat = 0, beta_lim = 0;
+    std::uint32_t health_sticky = 0;
+    double y_last = 0.0, dy_last = 0.0;
+
+private:
+    double clamp_k2(double k2) const;
+    bool period(bool ok, double y, std::uint32_t &h);
+    void literal_update(std::uint32_t &h);
+    double torque(double m, std::uint32_t &h);
+    PdChannelTable t_;
+    int src_ = 0;
+    double f_ground_ = 0.0, k2_fixed_ = 0.0, k2_ = -1.0, gp_ = 0.0, gd_ = 0.0;
+    double y_prev_ = 0.0, m_last_ = 0.0, m_held_ = 0.0;
+    bool have_prev_ = false;
+    std::int32_t same_cnt_ = 0;
+    std::uint32_t same_run_ = 0, miss_run_ = 0;
+    int nu_ = 0, n_bad_ = 0, zero_run_ = 0;
+    double sum_ = 0.0, fill_ = 0.0, xbar_ = 0.0, xbar_prev_ = 0.0;
+    bool have_fill_ = false, have_xbar_ = false;
+};
 
 }  // namespace ref
 

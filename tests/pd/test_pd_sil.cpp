@@ -1,22 +1,31 @@
-// HOLD in closed loop (SIL): plant node <-> LCM (memq) <-> bridge <-> fsw_step, the
-// in-process lock-step driver of hil_host/sil, and the same run with the double reference in
-// place of the flight code (`--fsw ref`).
+// HOLD in closed loop (SIL, spec 40 §7): plant node <-> LCM (memq) <-> bridge <-> fsw_step, the
+// in-process lock-step driver of hil_host/sil, and the same runs with the double reference in place of
+// the flight code (`--fsw ref`, spec 40 G5). The suite's reduced forms of A3-4, A3-7, A3-8 and A3-10;
+// the full grids are campaign commands (fsw/pd/README.md).
 //
-// Bounds, derived from the default table and the nominal scenario (J = 10 kg m^2, 0.2 rad/s):
-// the law saturates at 0.05 N m until |omega| = u_max / K = 0.1 rad/s (20 s at 0.005 rad/s^2),
-// then decays with tau = J / K = 20 s: below 1e-3 rad/s after 20 + 20 ln(100) = 112 s. The
-// bound 130 s leaves 18 s for the gyro noise (1e-5 rad/s) and quantisation; the final rate
-// lies far below 1e-3 rad/s after 300 s. Fixed point vs reference: the commands differ by at
-// most 1/2 LSB per step (test_pd_ref_host.cpp), so t_settle within 2 periods and the
-// final rates within 1e-5 rad/s. A NaN window of 1 s on the gyro: 10 refused samples,
-// MEAS_SKIP, zero torque, never SAFE (stale_max is 250 steps).
+// Bounds, derived or quoted:
+// - A3-4: fixed vs reference with the same noise sequence, max |x_SIL - x_ref| <= 2e-6 rad (the spec's
+//   bound). The commands differ by <= 1/2 q28 LSB before the actuator rounding (G1), then both round to
+//   the 2^-20 N m count; a count differs only where the two straddle a half count, so the applied torques
+//   differ by at most 1 count (9.5e-7 N m) on rare samples — far below 2e-6 rad of attitude (the gimbal
+//   turns a torque error into a body rate through H/(Iβ s...) with a gain < 1e-3 rad per N m s).
+//   t*: the spec's max(1 s, 2 %); every run |M| <= 0.7 N m, |dy/Ty| <= 3.1e-3 rad/s, |beta| < pi/4,
+//   no TRQ_SAT (§5 value ranges: 0.68 N m, 3.02e-3 rad/s, 0.51 rad).
+// - A3-7: per channel max |x_3ch - x_1ch| <= 2e-5 rad and t* within max(5 s, 5 %) (the spec's).
+// - A3-8: LITERAL pitch 0.10 Hz, k2 = 100 settles within 300 s (reference evidence 185 s); k2 = 200 does
+//   not settle by 1200 s and |x| >= 0.017 rad after 600 s or TRQ_SAT latches (the spec's).
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "pd/pd_metrics.hpp"
+#include "pd/pd_section.hpp"
 #include "scenario/scenario.hpp"
 #include "sil_run.hpp"
+extern "C" {
+#include "fsw_ids.h"
+#include "pd_ids.h"
+}
 // last: cmocka.h defines macros (fail, ...) that clash with the standard library headers
 #include "sim_test.hpp"
 
@@ -30,54 +39,240 @@ sil::InprocResult fly(const sim::Scenario &s, const std::string &fsw)
 }
 
 const host::PdMetrics &mm(const sil::InprocResult &r) { return r.metrics<host::PdMetrics>(); }
+sim::PdSetup &body(sim::Scenario &s) { return s.mission_part<sim::PdScenario>().body; }
+
+void command(sim::Scenario &s, std::uint32_t local, std::int32_t a0, std::int32_t a1 = 0, std::int32_t a2 = 0)
+{
+    sim::ScnCommand c;
+    c.t_s = 0.0;
+    c.name = "test";
+    c.cmd = static_cast<std::int32_t>(FSW_TC_ID(FSW_MISSION_HOLD, local));
+    c.args[0] = a0;
+    c.args[1] = a1;
+    c.args[2] = a2;
+    s.commands.push_back(c);
+}
+
+// A scenario at f_min = f with every channel displaced by x0 and the schedule at the true f (GROUND).
+sim::Scenario ground(double f, double duration_s, bool all_channels = true)
+{
+    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+    s.duration_s = duration_s;
+    body(s).f_hz = f;
+    if (all_channels) { body(s).x0_rad = {{0.017, 0.017, 0.017}}; }
+    command(s, PD_CMD_SET_F, static_cast<std::int32_t>(std::lround(f * 1e6)));
+    return s;
+}
+
+double max_diff(const std::vector<double> &a, const std::vector<double> &b)
+{
+    double d = (a.size() == b.size()) ? 0.0 : 1e9;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) { d = std::fmax(d, std::fabs(a[i] - b[i])); }
+    return d;
+}
+
+void common_checks(const sil::InprocResult &r)
+{
+    EXPECT_TRUE(!r.plant.diverged && r.plant.deterministic());
+    EXPECT_EQ_INT(r.summary.number("fsw_n_safe"), 0);
+    EXPECT_EQ_INT(r.summary.number("t_first_fx_status_s"), -1);
+}
+
+const char *const kCh[] = {"yaw", "roll", "pitch"};
 
 }  // namespace
 
-SIM_TEST(nominal_settles_like_the_reference)
+SIM_TEST(a3_4_fixed_gains_at_0_01_hz_match_the_reference)
 {
-    const sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+    const sim::Scenario s = ground(0.01, 2000.0);
     const sil::InprocResult fx = fly(s, "fixed");
     const sil::InprocResult rf = fly(s, "ref");
-    std::printf("fixed: t_settle %.2f s, final |w| %.3g rad/s, peak torque %.5f N m, health OR 0x%08X\n",
-                mm(fx).t_settle_s, mm(fx).rate_final_radps, mm(fx).peak_torque_nm, mm(fx).health_or);
-    std::printf("ref:   t_settle %.2f s, final |w| %.3g rad/s, peak torque %.5f N m\n", mm(rf).t_settle_s,
-                mm(rf).rate_final_radps, mm(rf).peak_torque_nm);
-    for (const sil::InprocResult *r : {&fx, &rf}) {
-        EXPECT_TRUE(!r->plant.diverged && r->plant.deterministic());
-        EXPECT_EQ_INT(r->plant.steps, 3000);
-        EXPECT_LE(mm(*r).t_settle_s, 130.0);
-        EXPECT_LE(mm(*r).rate_final_radps, 1e-4);
-        EXPECT_NEAR(mm(*r).peak_torque_nm, 3277.0 / 65536.0, 1e-12);   // at the limit while saturated
+    common_checks(fx);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const double d = max_diff(mm(fx).x[k], mm(rf).x[k]);
+        std::printf("A3-4 %-5s f 0.01 Hz k2 %.0f: t* fixed %.2f ref %.2f s, max |x_fx - x_ref| %.3e rad, peak |M| %.4f "
+                    "N m, |dy/Ty| %.3e rad/s, |beta| %.4f rad\n",
+                    kCh[k], mm(fx).k2_final[k], mm(fx).t_settle(k), mm(rf).t_settle(k), d, mm(fx).peak_m[k],
+                    mm(fx).peak_rate[k], mm(fx).peak_beta[k]);
+        EXPECT_LE(d, 2e-6);
+        EXPECT_LE(mm(fx).peak_m[k], 0.7);
+        EXPECT_LE(mm(fx).peak_rate[k], 3.1e-3);
+        EXPECT_LE(mm(fx).peak_beta[k], M_PI / 4.0);
+        EXPECT_TRUE((mm(fx).health_or[k] & PD_H_TRQ_SAT) == 0u);
     }
-    EXPECT_NEAR(mm(fx).t_settle_s, mm(rf).t_settle_s, 2.0 * s.h_s() + 1e-9);
-    EXPECT_NEAR(mm(fx).rate_final_radps, mm(rf).rate_final_radps, 1e-5);
-    EXPECT_TRUE((mm(fx).health_or & PD_H_CMD_LIMITED) != 0u);
-    EXPECT_TRUE((mm(fx).health_or & PD_H_CMD_LIMIT_PERSIST) == 0u);   // 20 s < 60 s
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_tbl_rej"), 0);
-    EXPECT_EQ_INT(fx.summary.number("t_first_fx_status_s"), -1);
+    // the table's k2 at the 0.01-Hz node: yaw 805, roll 135 (capped), pitch 475 (tools/pd/schedule)
+    EXPECT_NEAR(mm(fx).k2_final[0], 805.0, 0.0);
+    EXPECT_NEAR(mm(fx).k2_final[1], 135.0, 0.0);
+    EXPECT_NEAR(mm(fx).k2_final[2], 475.0, 0.0);
+    // A3-4 asks no t* at these nodes: at 0.01 Hz the residual elastic ripple is ~70 % of the band and
+    // the noise decides when it last crosses (§9). Measured: pitch 218.75 s (noise-free 219.25), yaw 547.5 s
+    // (noise-free 375: its two tones ride on the band), roll does not settle in 2000 s (§3.4 limitation).
+    EXPECT_TRUE(mm(fx).t_settle(0) > 0.0);
+    EXPECT_TRUE(mm(fx).t_settle(2) > 0.0 && mm(fx).t_settle(2) <= 300.0);
+    EXPECT_TRUE(mm(fx).t_settle(1) < 0.0);
 }
 
-SIM_TEST(gyro_nan_window_is_refused_and_flown_through)
+SIM_TEST(a3_4_pitch_t_star_equals_the_reference)
 {
-    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
-    s.faults.nan_s = {{50.0, 51.0}};
-    s.faults.nan_channel = 0u;
-    const sil::InprocResult fx = fly(s, "fixed");
-    std::printf("NaN window: plant nan frames %llu, fsw n_chan_rej %.0f, n_skip %.0f\n",
-                static_cast<unsigned long long>(fx.plant.nan_frames), fx.summary.number("fsw_n_chan_rej"),
-                fx.summary.number("fsw_pd_n_skip"));
-    EXPECT_EQ_INT(fx.plant.nan_frames, 10);
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_chan_rej"), 10);
-    EXPECT_EQ_INT(fx.summary.number("fsw_pd_n_skip"), 10);
-    EXPECT_EQ_INT(fx.summary.number("fsw_n_safe"), 0);
-    EXPECT_TRUE((mm(fx).health_or & PD_H_MEAS_SKIP) != 0u);
-    EXPECT_LE(mm(fx).rate_final_radps, 1e-4);
+    const double fs[] = {0.03, 0.10}, k2s[] = {370.0, 75.0};
+    for (int i = 0; i < 2; ++i) {
+        const sim::Scenario s = ground(fs[i], 1200.0, false);
+        const sil::InprocResult fx = fly(s, "fixed");
+        const sil::InprocResult rf = fly(s, "ref");
+        common_checks(fx);
+        const double tf = mm(fx).t_settle(2), tr = mm(rf).t_settle(2);
+        std::printf("A3-4 pitch f %.2f Hz k2 %.0f: t* fixed %.2f s, ref %.2f s (noise-free schedule %.2f s), max "
+                    "|dx| %.3e rad\n", fs[i], mm(fx).k2_final[2], tf, tr, i == 0 ? 165.5 : 50.0,
+                    max_diff(mm(fx).x[2], mm(rf).x[2]));
+        EXPECT_NEAR(mm(fx).k2_final[2], k2s[i], 0.0);
+        EXPECT_TRUE(tf > 0.0);
+        EXPECT_NEAR(tf, tr, std::fmax(1.0, 0.02 * tr));
+    }
+}
+
+SIM_TEST(a3_7_coupled_plant_matches_the_single_channels)
+{
+    const double fs[] = {0.03, 0.10};
+    for (double f : fs) {
+        const sim::Scenario s1 = ground(f, 1200.0);
+        const sil::InprocResult r1 = fly(s1, "fixed");
+        for (int sign : {1, -1}) {
+            sim::Scenario s3 = ground(f, 1200.0);
+            body(s3).kind = sim::PdPlantKind::Coupled;
+            body(s3).coupling_sign = sign;
+            const sil::InprocResult r3 = fly(s3, "fixed");
+            common_checks(r3);
+            for (std::size_t k = 0; k < 3; ++k) {
+                const double d = max_diff(mm(r3).x[k], mm(r1).x[k]);
+                const double t3 = mm(r3).t_settle(k), t1 = mm(r1).t_settle(k);
+                std::printf("A3-7 f %.2f sign %+d %-5s: max |x_3ch - x_1ch| %.3e rad, t* %.2f / %.2f s\n", f, sign,
+                            kCh[k], d, t3, t1);
+                EXPECT_LE(d, 2e-5);
+                if (t1 > 0.0) { EXPECT_NEAR(t3, t1, std::fmax(5.0, 0.05 * t1)); }
+            }
+        }
+    }
+}
+
+SIM_TEST(a3_8_literal_law_settles_at_100_and_not_at_200)
+{
+    for (int k2 : {100, 200}) {
+        sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+        s.fsw.table = "pd_literal";
+        body(s).f_hz = 0.10;
+        command(s, PD_CMD_SET_K2, k2 * 256, k2 * 256, k2 * 256);
+        const sil::InprocResult fx = fly(s, "fixed");
+        const double t = mm(fx).t_settle(2);
+        std::printf("A3-8 LITERAL pitch 0.10 Hz k2 %d: t* %.2f s, peak |x| after 600 s %.4f rad, peak |beta| %.4f rad, "
+                    "TRQ_SAT %s, BETA_LIM %s (%.0f samples)\n", k2, t, mm(fx).peak_x_late[2], mm(fx).peak_beta[2],
+                    (mm(fx).health_or[2] & PD_H_TRQ_SAT) ? "yes" : "no",
+                    (mm(fx).health_or[2] & PD_H_BETA_LIM) ? "yes" : "no", fx.summary.number("fsw_pd_pitch_beta_lim"));
+        EXPECT_TRUE(!fx.plant.diverged);
+        EXPECT_EQ_INT(fx.summary.number("t_first_fx_status_s"), -1);
+        if (k2 == 100) {
+            EXPECT_TRUE(t > 0.0 && t <= 300.0);
+        } else {
+            EXPECT_TRUE(t < 0.0);
+            // the spec's "|x| >= 0.017 rad after 600 s or TRQ_SAT" assumes no gimbal limit: here the §8 rule
+            // (zero any torque driving |beta| past pi/4) catches the divergence first and holds it in a
+            // limit cycle at the gimbal stop, BETA_LIM latched (fsw/pd/README.md, A3-8)
+            EXPECT_TRUE(mm(fx).peak_x_late[2] >= 0.017 || (mm(fx).health_or[2] & (PD_H_TRQ_SAT | PD_H_BETA_LIM)) != 0u);
+            EXPECT_TRUE(mm(fx).peak_x_late[2] >= 1e-3);   // far outside the band: not a slow settle
+        }
+    }
+}
+
+SIM_TEST(a3_10_sensor_faults_are_counted_and_flown_through)
+{
+    // pitch at 0.03 Hz on the schedule; 1, 4 and 16 samples lost at t = 20 s (a NaN truth window: the
+    // executive refuses the channel), a frozen window, an out-of-range offset and a spike.
+    const int gaps[] = {1, 4, 16};
+    const sim::Scenario base = ground(0.03, 1200.0, false);
+    const sil::InprocResult r0 = fly(base, "fixed");
+    for (int g : gaps) {
+        sim::Scenario s = base;
+        s.faults.nan_s = {{20.0, 20.0 + 0.25 * g}};
+        s.faults.nan_channel = 2u;
+        const sil::InprocResult fx = fly(s, "fixed");
+        common_checks(fx);
+        std::printf("A3-10 %2d samples lost at 20 s: miss %.0f, t* %.2f s (no loss %.2f s)\n", g,
+                    fx.summary.number("fsw_pd_pitch_miss"), mm(fx).t_settle(2), mm(r0).t_settle(2));
+        EXPECT_EQ_INT(fx.summary.number("fsw_pd_pitch_miss"), g);
+        EXPECT_TRUE(mm(fx).t_settle(2) > 0.0);
+        EXPECT_TRUE((mm(fx).health_or[2] & PD_H_STALE) != 0u);
+        EXPECT_TRUE(((mm(fx).health_or[2] & PD_H_COAST) != 0u) == (g > 1));   // n_hold = 1
+    }
+    {
+        sim::Scenario s = base;
+        body(s).frozen.push_back(sim::PdWindow{30.0, 50.0, 2u, 0.0});   // 80 samples repeated under torque
+        const sil::InprocResult fx = fly(s, "fixed");
+        common_checks(fx);
+        const double st = fx.summary.number("fsw_pd_pitch_stale");
+        std::printf("A3-10 frozen 20 s: stale %.0f, t* %.2f s\n", st, mm(fx).t_settle(2));
+        // the window repeats the count of the sample before it (29.75 s) for its 80 samples: 81 identical,
+        // the 40th is the first refused
+        EXPECT_EQ_INT(st, 81 - 39);
+        EXPECT_TRUE((mm(fx).health_or[2] & PD_H_FROZEN) != 0u);
+        EXPECT_TRUE(mm(fx).t_settle(2) > 0.0);
+    }
+    {
+        sim::Scenario s = base;
+        body(s).offset.push_back(sim::PdWindow{40.0, 42.0, 2u, 0.6});   // beyond 0.5 rad: SAT, 8 samples
+        body(s).offset.push_back(sim::PdWindow{50.0, 50.25, 2u, 0.03});  // one sample 0.03 > 2^-6 rad off
+        s.faults.spike_s = {{60.0, 60.25}};   // one count of INT32_MAX: the law's range check
+        s.faults.spike_channel = 2u;
+        const sil::InprocResult fx = fly(s, "fixed");
+        common_checks(fx);
+        std::printf("A3-10 out of range 2 s + spike: range_rej %.0f, rate_rej %.0f, chan_rej %.0f, t* %.2f s\n",
+                    fx.summary.number("fsw_pd_pitch_range_rej"), fx.summary.number("fsw_pd_pitch_rate_rej"),
+                    fx.summary.number("fsw_n_chan_rej"), mm(fx).t_settle(2));
+        EXPECT_EQ_INT(fx.summary.number("fsw_pd_pitch_range_rej"), 8 + 1);
+        EXPECT_EQ_INT(fx.summary.number("fsw_pd_pitch_rate_rej"), 1);
+        EXPECT_TRUE(mm(fx).t_settle(2) > 0.0);
+    }
+}
+
+SIM_TEST(a3_10_five_percent_frame_loss_keeps_t_star)
+{
+    // 5 % of the sensor frames lost on the link, with re-publication off (the lock-step would otherwise
+    // recover every one: retx_max = 2 by default, and the flight would see no loss at all). The spec's
+    // allowance: t* within 10 % of the loss-free run (A3-10, with the GROUND schedule until pd_fest).
+    for (double f : {0.01, 0.03, 0.10}) {
+        const sim::Scenario s0 = ground(f, 1200.0, false);
+        sim::Scenario s = s0;
+        s.faults.drop_ppm = 50000u;
+        s.faults.seed = 7u;
+        s.lockstep.retx_max = 0u;   // no re-publication: a lost frame is a lost sample
+        const sil::InprocResult r0 = fly(s0, "fixed");
+        const sil::InprocResult r = fly(s, "fixed");
+        common_checks(r);
+        const double t0 = mm(r0).t_settle(2), t = mm(r).t_settle(2);
+        std::printf("A3-10 5 %% frame loss, pitch f %.2f Hz: miss %.0f of %llu samples, t* %.2f s (no loss %.2f s)\n", f,
+                    r.summary.number("fsw_pd_pitch_miss"), static_cast<unsigned long long>(r.plant.steps), t, t0);
+        EXPECT_TRUE(r.summary.number("fsw_pd_pitch_miss") > 0.03 * 4800.0);
+        EXPECT_TRUE(t > 0.0);
+        EXPECT_LE(t, 1.1 * t0);
+    }
+}
+
+SIM_TEST(runs_are_bit_identical)
+{
+    sil::InprocOptions o;
+    o.determinism_check = true;
+    const sim::Scenario s = ground(0.05, 300.0);
+    const sil::InprocResult r = sil::run_inproc(s, o);
+    EXPECT_TRUE(!r.determinism_failed);
 }
 
 int main()
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(nominal_settles_like_the_reference),
-                                       cmocka_unit_test(gyro_nan_window_is_refused_and_flown_through)};
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a3_4_fixed_gains_at_0_01_hz_match_the_reference),
+        cmocka_unit_test(a3_4_pitch_t_star_equals_the_reference),
+        cmocka_unit_test(a3_7_coupled_plant_matches_the_single_channels),
+        cmocka_unit_test(a3_8_literal_law_settles_at_100_and_not_at_200),
+        cmocka_unit_test(a3_10_sensor_faults_are_counted_and_flown_through),
+        cmocka_unit_test(a3_10_five_percent_frame_loss_keeps_t_star),
+        cmocka_unit_test(runs_are_bit_identical)};
     return cmocka_run_group_tests_name("pd_sil", tests, nullptr, nullptr);
 }

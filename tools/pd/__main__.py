@@ -1,4 +1,4 @@
-"""python -m tools.pd {ctable [--check] | image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE
+"""python -m tools.pd {ctable [--check] | schedule --analysis BIN [--check] | image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE
    | --all DIR)} (from the repo root)."""
 import argparse
 import sys
@@ -9,6 +9,9 @@ def main(argv=None):
     sub = ap.add_subparsers(dest="cmd", required=True)
     t = sub.add_parser("ctable", help="write (or --check) the C boot tables fsw/pd/pd_tables.[ch]")
     t.add_argument("--check", action="store_true")
+    sc = sub.add_parser("schedule", help="write (or --check) tools/pd/schedule/*.json with pd_analysis synth")
+    sc.add_argument("--analysis", required=True, help="the pd_analysis executable")
+    sc.add_argument("--check", action="store_true")
     im = sub.add_parser("image", help="write binary table images (header + payload) of the boot tables")
     im.add_argument("--table", help="boot table name (design.TABLES)")
     im.add_argument("--all", metavar="DIR", help="write DIR/<name>.bin for every boot table")
@@ -19,6 +22,9 @@ def main(argv=None):
     if a.cmd == "ctable":
         from . import ctable
         return ctable.main(a.check)
+    if a.cmd == "schedule":
+        from . import schedule
+        return schedule.main(a.analysis, a.check)
     from . import image
     return image.main(a)
 

@@ -2,11 +2,14 @@
 `python -m tools.sil report LOG --out DIR [--summary S.json]` (tools/sil/report.py finds this
 module from the log's telemetry layout and writes the files).
 
-Figures, computed as the live metrics compute them (hil_host/missions/pd/pd_metrics.cpp),
-so with --summary they are the run summary's and the report's own derivation is checked against
-them (CTest sil_pd_report_agrees): settling time (last truth time with |omega| >= 1e-3 rad/s,
-plus one period), final |omega|, peak commanded torque, first CMD_LIMIT_PERSIST, the OR of the
-module's health. Plots: DIR/rate.png (truth omega and the flight's rate), DIR/torque.png.
+Figures, computed as the live metrics compute them (hil_host/missions/pd/pd_metrics.cpp), so with
+--summary they are the run summary's and the report's own derivation is checked against them (CTest
+sil_pd_report_agrees), per channel (yaw, roll, pitch): the settling time t* on the truth attitude at the
+sample instants (spec 40 §2.6: the first sample after the last one with |x| >= 5e-5 rad, -1 if the last
+violates the band), the peak commanded torque, the peak |dy|/Ty from the telemetry, the peak |beta|
+(truth), the peak |x| after 600 s, the final k2 and its number of changes, the OR of the channel's health.
+Plots: DIR/attitude.png (|x| per channel on a log scale with the band), DIR/torque.png (M commands),
+DIR/gimbal.png (beta truth), DIR/k2.png (k2 in use, telemetry).
 """
 import os
 
@@ -14,75 +17,88 @@ import numpy as np
 
 from tools.sil.report import Key, read_log
 
-TORQUE_LSB_NM = 2.0 ** -16     # actuator channel 0 (fsw/pd/pd_iface.py)
-RATE_LSB_RADPS = 2.0 ** -20    # sensor channel 0
-SETTLE_RADPS = 1e-3            # PdMetrics::kSettleRadps
+CH = ("yaw", "roll", "pitch")
+TORQUE_LSB_NM = 2.0 ** -20     # actuator channels 0..2 (fsw/pd/pd_iface.py)
+BAND_RAD = 5e-5                # PdMetrics::kBandRad
+LATE_S = 600.0                 # PdMetrics::kLateS
+# PdPlant truth layout (sim/pd/pd_plant.hpp): state[0..2] x, state[3..5] beta, state[13] linear_validity
+TX, TB, TLIN = 0, 3, 13
 
-SUMMARY_KEYS = [
-    Key("t_settle_s", "t_settle_s"),
-    Key("rate_final_radps", "rate_final_radps"),
-    Key("peak_torque_nm", "peak_torque_nm"),
-    Key("t_cmd_limit_persist_s", "t_cmd_limit_persist_s"),
-    Key("pd_health_or", "pd_health_sticky"),
-]
+SUMMARY_KEYS = []
+for _c in CH:
+    SUMMARY_KEYS += [Key("t_settle_%s_s" % _c, "t_settle_%s_s" % _c),
+                     Key("peak_m_%s_nm" % _c, "peak_m_%s_nm" % _c),
+                     Key("peak_rate_%s_radps" % _c, "peak_rate_%s_radps" % _c),
+                     Key("peak_beta_%s_rad" % _c, "peak_beta_%s_rad" % _c),
+                     Key("peak_x_late_%s_rad" % _c, "peak_x_late_%s_rad" % _c),
+                     Key("k2_final_%s_s" % _c, "k2_final_%s_s" % _c),
+                     Key("k2_changes_%s" % _c, "k2_changes_%s" % _c),
+                     Key("pd_%s_health_or" % _c, "pd_%s_health_or" % _c)]
+SUMMARY_KEYS.append(Key("linear_invalid", "linear_invalid"))
 
 
 def read(path, lcm_py, mission):
     tru, cmd = [], []
     C = read_log(path, lcm_py, mission, {
-        "GNC_TRUTH": lambda m: tru.append((m.utime * 1e-6, m.state[0], m.state[1])),
-        "GNC_CMD": lambda m: cmd.append((m.utime * 1e-6, m.counts[0] if m.n_counts >= 1 else 0, m.n_counts)),
+        "GNC_TRUTH": lambda m: tru.append((m.utime * 1e-6,) + tuple(m.state[:16])),
+        "GNC_CMD": lambda m: cmd.append((m.utime * 1e-6,) + tuple(m.counts[i] if i < m.n_counts else 0
+                                                                  for i in range(3))),
     })
     return dict(common=C, truth=tru, cmd=cmd, tlm=C["tlm"])
 
 
+def settle(t, x):
+    """t* of spec 40 §2.6 on samples (t_k, x_k)."""
+    bad = np.nonzero(~(np.abs(x) < BAND_RAD))[0]
+    if len(x) == 0 or not abs(x[-1]) < BAND_RAD:
+        return -1.0
+    return 0.0 if len(bad) == 0 else float(t[bad[-1] + 1])
+
+
 def metrics(R, mission, m):
     """Adds the module's figures, all derived from the log, to m (tools.sil's common ones)."""
-    h = 0.0
-    t_settle = 0.0
-    t_last = 0.0
-    w = 0.0
-    for i, (ts, om, _) in enumerate(R["truth"]):   # arrival order, as the live metrics see them
-        if i == 1:
-            h = ts - t_last
-        w = abs(om)
-        if w >= SETTLE_RADPS:
-            t_settle = ts + (h if i >= 1 else 0.0)
-        t_last = ts
-    m["t_settle_s"] = t_settle
-    m["rate_final_radps"] = w
-    m["peak_torque_nm"] = max([abs(c * TORQUE_LSB_NM) for _, c, n in R["cmd"] if n >= 1], default=0.0)
+    T = np.array(R["truth"]) if R["truth"] else np.zeros((0, 17))
+    C = np.array(R["cmd"], dtype=float) if R["cmd"] else np.zeros((0, 4))
     L = R["tlm"]
-    m["t_cmd_limit_persist_s"] = -1.0
-    if L is not None:
-        raw = L["raw"]
-        hw = raw["pd_health"].astype(np.int64)
-        m["pd_health_or"] = int(np.bitwise_or.reduce(hw))
-        bit = [b.mask for b in mission.iface.health if b.name == "CMD_LIMIT_PERSIST"][0]
-        hit = np.nonzero(hw & bit)[0]
-        if len(hit):
-            m["t_cmd_limit_persist_s"] = float(L["utime"][hit[0]] * 1e-6)
-        for k in ("n_skip", "n_limited", "revision"):
-            m["fsw"]["pd_" + k] = int(raw["pd_" + k][-1])
-        m["pd_flags_seen"] = [b.name for b in mission.iface.health if m["pd_health_or"] & b.mask]
+    ty = float(np.diff(T[:2, 0])[0]) if len(T) > 1 else 0.25
+    for k, c in enumerate(CH):
+        t, x = T[:, 0], T[:, 1 + TX + k]
+        m["t_settle_%s_s" % c] = settle(t, x)
+        m["peak_m_%s_nm" % c] = float(np.max(np.abs(C[:, 1 + k]) * TORQUE_LSB_NM)) if len(C) else 0.0
+        m["peak_beta_%s_rad" % c] = float(np.max(np.abs(T[:, 1 + TB + k]))) if len(T) else 0.0
+        late = np.abs(x[t >= LATE_S])
+        m["peak_x_late_%s_rad" % c] = float(late.max()) if len(late) else 0.0
+        if L is not None:
+            raw = L["raw"]
+            k2 = raw["pd_%s_k2" % c].astype(np.int64)
+            m["k2_final_%s_s" % c] = float(k2[-1]) * 2.0 ** -22
+            m["k2_changes_%s" % c] = int(np.count_nonzero(np.diff(k2)))
+            m["peak_rate_%s_radps" % c] = float(np.max(np.abs(raw["pd_%s_dy" % c].astype(float)))) * 2.0 ** -30 / ty
+            h = int(np.bitwise_or.reduce(raw["pd_%s_health" % c].astype(np.int64)))
+            m["pd_%s_health_or" % c] = h
+            m["pd_%s_flags_seen" % c] = [b.name for b in mission.iface.health if b.single and h & b.mask]
+            for n in ("miss", "stale", "range_rej", "rate_rej", "period_rej", "trq_sat", "beta_lim"):
+                m["fsw"]["pd_%s_%s" % (c, n)] = int(raw["pd_%s_%s" % (c, n)][-1])
+    m["linear_invalid"] = int(bool(len(T)) and bool(np.any(T[:, 1 + TLIN] < 0.5)))
     return m
 
 
 def format_summary(m, src):
     """The module's lines; src.tag(...) marks the log-derived ones when a run summary is in use."""
-    o = ["  settling          t_settle %.2f s (|omega| < %g rad/s after it)%s" % (
-             m["t_settle_s"], SETTLE_RADPS, src.tag("t_settle_s")),
-         "  final rate        |omega| %.3g rad/s%s" % (m["rate_final_radps"], src.tag("rate_final_radps")),
-         "  peak torque       %.6f N m%s" % (m["peak_torque_nm"], src.tag("peak_torque_nm"))]
-    if "pd_health_or" in m:
-        f = m["fsw"]
-        o.append("  module health OR  0x%08X %s%s" % (m["pd_health_or"], " ".join(m["pd_flags_seen"]) or
-                                                       "(no flag)", src.tag("pd_health_or")))
-        o.append("  module counters   n_skip %d, n_limited %d, revision %d%s" % (
-            f["pd_n_skip"], f["pd_n_limited"], f["pd_revision"], src.tag("fsw.pd_n_skip")))
-        o.append("  limit persist     %s%s" % ("never" if m["t_cmd_limit_persist_s"] < 0 else
-                                               "first at %.2f s" % m["t_cmd_limit_persist_s"],
-                                               src.tag("t_cmd_limit_persist_s")))
+    o = []
+    for c in CH:
+        o.append("  %-5s  t* %8.2f s  peak |M| %.4f N m  peak |dy|/Ty %.3g rad/s  peak |beta| %.4f rad  "
+                 "k2 %.2f s (%d changes)%s" % (c, m["t_settle_%s_s" % c], m["peak_m_%s_nm" % c],
+                                                m.get("peak_rate_%s_radps" % c, 0.0), m["peak_beta_%s_rad" % c],
+                                                m.get("k2_final_%s_s" % c, 0.0), m.get("k2_changes_%s" % c, 0),
+                                                src.tag("t_settle_%s_s" % c)))
+        if "pd_%s_health_or" % c in m:
+            f = m["fsw"]
+            o.append("         health OR 0x%08X %s; miss %d stale %d range %d rate %d period %d trq_sat %d "
+                     "beta_lim %d" % (m["pd_%s_health_or" % c], " ".join(m["pd_%s_flags_seen" % c]) or "(no flag)",
+                                      *[f["pd_%s_%s" % (c, n)] for n in ("miss", "stale", "range_rej", "rate_rej",
+                                                                          "period_rej", "trq_sat", "beta_lim")]))
+    o.append("  linear model      %s" % ("strained (|beta| > 0.5 rad seen)" if m["linear_invalid"] else "valid"))
     return "\n".join(o) + "\n"
 
 
@@ -91,33 +107,61 @@ def plots(R, m, out):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     paths = []
-    if R["truth"]:
-        T = np.array(R["truth"])
+    T = np.array(R["truth"]) if R["truth"] else None
+    if T is not None:
         fig, ax = plt.subplots(figsize=(10, 4))
-        ax.plot(T[:, 0], T[:, 1], label="truth omega")
-        L = R["tlm"]
-        if L is not None:
-            ax.plot(L["utime"] * 1e-6, L["raw"]["pd_rate"] * RATE_LSB_RADPS, "--", label="flight rate (tlm)")
+        for k, c in enumerate(CH):
+            ax.semilogy(T[:, 0], np.abs(T[:, 1 + TX + k]) + 1e-12, lw=0.8, label="|x| %s (t* %.1f s)"
+                        % (c, m["t_settle_%s_s" % c]))
+        ax.axhline(BAND_RAD, color="k", ls="--", lw=0.8, label="band 5e-5 rad")
+        ax.set_ylim(1e-8, 0.1)
         ax.set_xlabel("time [s]")
-        ax.set_ylabel("omega [rad/s]")
+        ax.set_ylabel("|x| [rad]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-        ax.set_title("HOLD: body rate")
+        ax.set_title("HOLD: attitude (truth)")
         fig.tight_layout()
-        p = os.path.join(out, "rate.png")
+        p = os.path.join(out, "attitude.png")
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
+        fig, ax = plt.subplots(figsize=(10, 3.5))
+        for k, c in enumerate(CH):
+            ax.plot(T[:, 0], T[:, 1 + TB + k], lw=0.8, label="beta %s" % c)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("gimbal angle [rad]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        p = os.path.join(out, "gimbal.png")
         fig.savefig(p, dpi=110)
         plt.close(fig)
         paths.append(p)
     if R["cmd"]:
         C = np.array(R["cmd"], dtype=float)
         fig, ax = plt.subplots(figsize=(10, 3.5))
-        ax.plot(C[:, 0], C[:, 1] * TORQUE_LSB_NM, label="torque command (GNC_CMD)")
+        for k, c in enumerate(CH):
+            ax.plot(C[:, 0], C[:, 1 + k] * TORQUE_LSB_NM, lw=0.8, label="M %s" % c)
         ax.set_xlabel("time [s]")
-        ax.set_ylabel("torque [N m]")
+        ax.set_ylabel("gimbal torque [N m]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()
         p = os.path.join(out, "torque.png")
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
+    L = R["tlm"]
+    if L is not None:
+        fig, ax = plt.subplots(figsize=(10, 3))
+        for c in CH:
+            ax.plot(L["utime"] * 1e-6, L["raw"]["pd_%s_k2" % c] * 2.0 ** -22, label="k2 %s" % c)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("k2 [s]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        p = os.path.join(out, "k2.png")
         fig.savefig(p, dpi=110)
         plt.close(fig)
         paths.append(p)

@@ -16,7 +16,7 @@ public:
 
     std::vector<std::uint8_t> boot_image(const sim::Scenario &s) const override
     {
-        const pd_params_t p = sim::pd_boot_table(s.fsw.table);
+        const pd_table_t p = sim::pd_boot_table(s.fsw.table);
         std::vector<std::uint8_t> img(FSW_TABLE_HDR_BYTES + PD_TBL_PAYLOAD);
         if (pd_table_encode(&p, 1u, img.data(), static_cast<std::uint32_t>(img.size())) != img.size()) {
             throw std::invalid_argument("pd table '" + s.fsw.table + "' does not encode");
@@ -33,7 +33,7 @@ public:
             throw std::invalid_argument("unknown reference FSW '" + kind + "' for HOLD (ref)");
         }
         const auto pl = image_payload(image);
-        pd_params_t p{};
+        pd_table_t p{};
         if (pd_table_decode(pl.first, pl.second, image_revision(image), &p) != FSW_OK) {
             throw std::invalid_argument("the reference FSW cannot decode this pd table image");
         }

@@ -1,69 +1,100 @@
 #include "pd/pd_metrics.hpp"
 
 #include <cmath>
+#include <string>
 
-#include "pd/pd_section.hpp"
+#include "pd/pd_plant.hpp"
 #include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 
 namespace host {
 
 namespace {
-const char *const kCounters[] = {"pd_n_skip", "pd_n_limited", "pd_revision"};
+const char *const kCh[] = {"yaw", "roll", "pitch"};
+const char *const kCounters[] = {"miss", "stale", "range_rej", "rate_rej", "period_rej", "trq_sat", "beta_lim"};
+constexpr double kTrqLsb = 1.0 / 1048576.0;   // actuator count, 2^-20 N m
 }  // namespace
 
-PdMetrics::PdMetrics(const sim::Scenario &)
+PdMetrics::PdMetrics(const sim::Scenario &s)
 {
-    i_health_ = tlm_layout(iface_mission("HOLD")).at("pd_health");
+    const TlmLayout &l = tlm_layout(iface_mission("HOLD"));
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::string c = std::string("pd_") + kCh[k];
+        i_health_[k] = l.at(c + "_health");
+        i_k2_[k] = l.at(c + "_k2");
+        i_dy_[k] = l.at(c + "_dy");
+    }
+    ty_s = s.h_s();
 }
 
-void PdMetrics::on_truth(const gnc::sim_truth_t &t)
+void PdMetrics::on_truth(const gnc::sim_truth_t &tr)
 {
-    const double ts = static_cast<double>(t.utime) * 1e-6;
-    if (truth_n == 1) {
-        h_s = ts - t_last_s;
+    const double ts = static_cast<double>(tr.utime) * 1e-6;
+    t.push_back(ts);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const double xk = tr.state[sim::PdPlant::kTruthX + k];
+        x[k].push_back(xk);
+        peak_beta[k] = std::fmax(peak_beta[k], std::fabs(tr.state[sim::PdPlant::kTruthBeta + k]));
+        if (ts >= kLateS) { peak_x_late[k] = std::fmax(peak_x_late[k], std::fabs(xk)); }
     }
-    const double w = std::fabs(t.state[0]);
-    if (w >= kSettleRadps) {
-        t_settle_s = ts + ((truth_n >= 1) ? h_s : 0.0);
-    }
-    rate_final_radps = w;
-    t_last_s = ts;
-    ++truth_n;
+    if (tr.state[sim::PdPlant::kTruthLinValid] < 0.5) { lin_invalid = true; }
 }
 
 void PdMetrics::on_cmd(const gnc::actuator_cmd_v2_t &c)
 {
-    if (c.n_counts >= 1) {
-        peak_torque_nm = std::fmax(peak_torque_nm, std::fabs(c.counts[0] * sim::kPdTorqueLsbNm));
+    for (std::size_t k = 0; k < 3 && static_cast<std::int32_t>(k) < c.n_counts; ++k) {
+        peak_m[k] = std::fmax(peak_m[k], std::fabs(c.counts[k] * kTrqLsb));
     }
 }
 
-void PdMetrics::on_tlm(const std::vector<std::int64_t> &v, double t_s)
+void PdMetrics::on_tlm(const std::vector<std::int64_t> &v, double)
 {
-    const auto h = static_cast<std::uint32_t>(v[i_health_]);
-    health_or |= h;
-    if (t_persist_s < 0.0 && (h & PD_H_CMD_LIMIT_PERSIST) != 0u) {
-        t_persist_s = t_s;
+    for (std::size_t k = 0; k < 3; ++k) {
+        health_or[k] |= static_cast<std::uint32_t>(v[i_health_[k]]);
+        const auto k2 = static_cast<std::uint32_t>(v[i_k2_[k]]);
+        if (have_tlm_ && k2 != k2_last_[k]) { ++k2_changes[k]; }
+        k2_last_[k] = k2;
+        k2_final[k] = std::ldexp(static_cast<double>(k2), -22);
+        peak_rate[k] = std::fmax(peak_rate[k], std::fabs(std::ldexp(static_cast<double>(v[i_dy_[k]]), -30)) / ty_s);
     }
+    have_tlm_ = true;
     last_ = v;
+}
+
+double PdMetrics::t_settle(std::size_t k) const
+{
+    const std::vector<double> &xs = x[k];
+    if (xs.empty()) { return -1.0; }
+    if (!(std::fabs(xs.back()) < kBandRad)) { return -1.0; }
+    for (std::size_t i = xs.size(); i-- > 0;) {
+        if (!(std::fabs(xs[i]) < kBandRad)) { return t[i + 1]; }
+    }
+    return 0.0;
 }
 
 void PdMetrics::summary(Summary &s) const
 {
     const iface::Mission &m = iface_mission("HOLD");
-    s.add("t_settle_s", t_settle_s, "%.2f");
-    s.add("rate_final_radps", rate_final_radps, "%.3g");
-    s.add("peak_torque_nm", peak_torque_nm, "%.6f");
-    s.add("t_cmd_limit_persist_s", t_persist_s, "%.2f");
-    if (!last_.empty()) {
-        const TlmLayout &l = tlm_layout(m);
-        for (const char *k : kCounters) {
-            s.add_int(std::string("fsw_") + k, last_[l.at(k)]);
+    const TlmLayout &l = tlm_layout(m);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::string c = kCh[k];
+        s.add("t_settle_" + c + "_s", t_settle(k), "%.2f");
+        s.add("peak_m_" + c + "_nm", peak_m[k], "%.6f");
+        s.add("peak_rate_" + c + "_radps", peak_rate[k], "%.6g");
+        s.add("peak_beta_" + c + "_rad", peak_beta[k], "%.6g");
+        s.add("peak_x_late_" + c + "_rad", peak_x_late[k], "%.6g");
+        s.add("k2_final_" + c + "_s", k2_final[k], "%.4f");
+        s.add_int("k2_changes_" + c, k2_changes[k]);
+        s.add_hex("pd_" + c + "_health_or", health_or[k]);
+        s.add_str("pd_" + c + "_health_or_names", bits_str(health_or[k], m.health, m.n_health));
+        if (!last_.empty()) {
+            for (const char *n : kCounters) {
+                const std::string key = "pd_" + c + "_" + n;
+                s.add_int("fsw_" + key, last_[l.at(key)]);
+            }
         }
     }
-    s.add_hex("pd_health_sticky", health_or);
-    s.add_str("pd_health_sticky_names", bits_str(health_or, m.health, m.n_health));
+    s.add_int("linear_invalid", lin_invalid ? 1 : 0);
 }
 
 }  // namespace host

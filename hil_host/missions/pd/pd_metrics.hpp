@@ -1,11 +1,12 @@
-// pd_metrics.hpp — acceptance metrics of a HOLD run, computed live from the LCM
-// stream: the body rate from the plant's truth (GNC_TRUTH), the torque commands (GNC_CMD), the
-// module's health and counters from the HOLD telemetry. `sil run` writes them into
-// summary.txt / summary.json; tools/pd/report.py derives the same figures from the log
-// (CTest sil_pd_report_agrees proves they agree).
+// pd_metrics.hpp — acceptance metrics of a HOLD run (spec 40 §2.6, §7), computed live from the LCM
+// stream: the attitude, gimbal angles and f_min from the plant's truth (GNC_TRUTH), the torque commands
+// (GNC_CMD), the channels' health, k2 and counters from the HOLD telemetry. `sil run` writes them into
+// summary.txt / summary.json; tools/pd/report.py derives the same figures from the log (CTest
+// sil_pd_report_agrees proves they agree). The truth attitude series is kept (tests compare two runs).
 #ifndef HIL_MISSIONS_PD_METRICS_HPP
 #define HIL_MISSIONS_PD_METRICS_HPP
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,18 +22,24 @@ public:
     void on_tlm(const std::vector<std::int64_t> &v, double t_s) override;
     void summary(Summary &s) const override;
 
-    static constexpr double kSettleRadps = 1e-3;   // settled: |omega| below this from t_settle on
-    double h_s = 0.0;              // truth spacing
-    double t_last_s = 0.0;
-    double t_settle_s = 0.0;       // last time |omega| >= kSettleRadps, plus h (0: never above)
-    double rate_final_radps = 0.0; // |omega| at the last truth sample
-    double peak_torque_nm = 0.0;   // largest commanded |torque|
-    std::uint32_t health_or = 0;   // OR of the module's health over the run
-    double t_persist_s = -1.0;     // first CMD_LIMIT_PERSIST, -1 = never
-    std::uint64_t truth_n = 0;
+    static constexpr double kBandRad = 5e-5;          // spec 40 §2.4 settling band
+    static constexpr double kLateS = 600.0;            // A3-8: |x| after this time
+    // Settling time of channel k on the truth at the sample instants (§2.6): the first sample after
+    // the last one with |x| >= band; -1 if the final sample violates it; 0 if none does.
+    double t_settle(std::size_t k) const;
+
+    std::array<std::vector<double>, 3> x;             // truth attitude at t_k [rad]
+    std::vector<double> t;                            // t_k [s]
+    std::array<double, 3> peak_beta{}, peak_m{}, peak_rate{}, peak_x_late{};   // rad, N m, rad/s, rad
+    std::array<double, 3> k2_final{};                 // s
+    std::array<std::uint32_t, 3> k2_changes{}, health_or{};
+    bool lin_invalid = false;                         // any sample with |beta| > 0.5 rad
+    double ty_s = 0.25;
 
 private:
-    std::size_t i_health_;
+    std::array<std::size_t, 3> i_health_{}, i_k2_{}, i_dy_{};
+    std::array<std::uint32_t, 3> k2_last_{};
+    bool have_tlm_ = false;
     std::vector<std::int64_t> last_;
 };
 

@@ -1,5 +1,6 @@
 #include "pd/pd_ref_backend.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace host {
@@ -18,20 +19,22 @@ std::uint32_t sat_u32(std::int32_t v) { return (v < 0) ? 0u : static_cast<std::u
 
 }  // namespace
 
-RefPdBackend::RefPdBackend(const pd_params_t &table)
-    : p_(table), t_(ref::dequantise(table)), tlm_(new fsw_tlm_t())
-{
-    pd_mis_t b{};
-    b.p = table;
-    b.have_p = true;
-    pd_mis_ranges(&b, &rng_);   // the flight adapter's channel map
-    (void)reset();
-}
+RefPdBackend::RefPdBackend(const pd_table_t &table) : t_(table), tlm_(new fsw_tlm_t()) { (void)reset(); }
 
 bool RefPdBackend::reset()
 {
-    step_ = 0;
-    limited_run_ = 0;
+    ch_.clear();
+    for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
+        pd_params_t p{};
+        pd_params_of(&t_, k, &p);
+        ch_.emplace_back(ref::dequantise(p));
+    }
+    act_.fill(0);
+    step_ = health_ = 0u;
+    seq0_ = -1;
+    last_seq_ = -1;
+    last_idx_ = -1;
+    tc_ = 0u;
     *tlm_ = fsw_tlm_t{};
     tlm_->mission = FSW_MISSION_HOLD;
     return true;
@@ -43,42 +46,106 @@ void RefPdBackend::host_counters(const bridge::Counters &c)
     rejected_ = sat_u32(bridge::rejected_total(c));
 }
 
+bool RefPdBackend::command(const bridge::FswCommand &c)
+{
+    const std::uint32_t id = static_cast<std::uint32_t>(c.cmd);
+    const std::uint32_t local = id & FSW_TC_LOCAL_MASK;
+    if (c.cmd < 0 || (id & ~FSW_TC_LOCAL_MASK) != FSW_TC_ID(FSW_MISSION_HOLD, 0u) || local < 1u || local > PD_CMD_MAX) {
+        return false;
+    }
+    tc_ = local;
+    for (std::size_t i = 0; i < FSW_TC_ARGS; ++i) { tc_arg_[i] = c.args[i]; }
+    return true;
+}
+
 bool RefPdBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
 {
     out = bridge::StepOutput{};
     ++step_;
+    // the adapter's telecommands (pd_mission.c), in the same units
+    for (std::size_t k = 0; k < PD_N_CH; ++k) {
+        ref::PdRefChannel &c = ch_[k];
+        if (tc_ == PD_CMD_RESET_COUNTERS) {
+            c.miss = c.stale = c.range_rej = c.rate_rej = c.period_rej = c.trq_sat = c.beta_lim = 0u;
+            c.health_sticky = 0u;
+        } else if (tc_ == PD_CMD_SET_SOURCE && tc_arg_[0] >= 0 && tc_arg_[0] <= 1) {
+            (void)c.set_source(tc_arg_[0]);
+        } else if (tc_ == PD_CMD_SET_F && tc_arg_[0] >= 0 && tc_arg_[0] < 500000) {
+            // the flight's uq32 of the commanded 1e-6 Hz, dequantised
+            const std::uint64_t f_uhz = static_cast<std::uint32_t>(tc_arg_[0]);
+            const std::uint64_t f_q32 = (f_uhz * 4294967296ull + 500000ull) / 1000000ull;
+            c.set_f_ground(std::ldexp(static_cast<double>(f_q32), -32));
+            (void)c.set_source(PD_SRC_GROUND);
+        } else if (tc_ == PD_CMD_SET_K2 && tc_arg_[k] >= 0 && tc_arg_[k] < 1023 * 256) {
+            c.set_k2_fixed(static_cast<double>(tc_arg_[k]) / 256.0);
+            (void)c.set_source(PD_SRC_FIXED);
+        }
+    }
+    tc_ = 0u;
     fsw_tlm_t &t = *tlm_;
     pd_tlm_t &m = t.m.hold;
-    const bool valid = f.n_counts >= 1 && (f.status[0] & (bridge::kStatusStale | bridge::kStatusSat)) == 0 &&
-                       f.counts[0] >= rng_.min && f.counts[0] <= rng_.max;
-    std::uint32_t h = 0u;
-    std::int32_t u = 0;
-    if (valid) {
-        const ref::PdOut o = ref::pd_law(t_, static_cast<double>(f.counts[0]) * sim::kPdRateLsbRadps);
-        u = to_cnt(o.tau_nm, sim::kPdTorqueLsbNm);
-        limited_run_ = o.limited ? limited_run_ + 1u : 0u;
-        if (o.limited) { h |= PD_H_CMD_LIMITED; ++m.n_limited; }
-        m.rate_cnt = f.counts[0];
-    } else {
-        h |= PD_H_MEAS_SKIP;
-        ++m.n_skip;
-        limited_run_ = 0u;
-        m.rate_cnt = 0;
+    const bool have = f.n_counts >= static_cast<std::int16_t>(PD_N_SENS);
+    // the adapter's sample instants (pd_mission.c): every n_div-th frame by seq from the first, a seq
+    // jump a gap of lost samples, a repeated seq stale
+    if (seq0_ < 0) {
+        seq0_ = f.seq;
+        last_seq_ = f.seq - 1;
     }
-    if (limited_run_ >= p_.n_sat) { h |= PD_H_CMD_LIMIT_PERSIST; }
-    m.u_cnt = u;
-    m.health_sticky |= h;
-    m.revision = p_.revision;
+    const std::int64_t nd = t_.c.n_div;
+    const std::int64_t rel = f.seq - seq0_;
+    if (rel >= 0 && rel % nd == 0) {
+        const bool fresh = f.seq != last_seq_;
+        const std::int64_t idx = rel / nd;
+        const std::uint32_t gap =
+            (last_idx_ >= 0 && idx > last_idx_) ? static_cast<std::uint32_t>(idx - last_idx_ - 1) : 0u;
+        std::uint32_t h = 0u;
+        for (std::size_t k = 0; k < PD_N_CH; ++k) {
+            if ((t_.c.ch_mask & (1u << k)) == 0u) {
+                act_[k] = 0;
+                continue;
+            }
+            if (gap > 0u) { ch_[k].note_gap(gap); }
+            const std::size_t kb = k + PD_N_CH;
+            ref::PdRefIn in;
+            in.y_cnt = have ? f.counts[k] : 0;
+            in.y_valid = have && fresh && (f.status[k] & bridge::kStatusStale) == 0;
+            in.y_sat = have && (f.status[k] & bridge::kStatusSat) != 0;
+            in.beta_cnt = have ? f.counts[kb] : 0;
+            in.beta_valid = have && fresh && (f.status[kb] & (bridge::kStatusStale | bridge::kStatusSat)) == 0;
+            const ref::PdRefOut o = ch_[k].step(in);
+            act_[k] = to_cnt(o.m_nm, std::ldexp(1.0, -20));
+            h |= o.health;
+            pd_ch_tlm_t &c = m.ch[k];
+            const ref::PdRefChannel &r = ch_[k];
+            c.y_q30 = to_cnt(r.y_last, std::ldexp(1.0, -30));
+            c.dy_q30 = to_cnt(r.dy_last, std::ldexp(1.0, -30));
+            c.m_q28 = to_cnt(o.m_nm, std::ldexp(1.0, -28));
+            c.k2_q22 = static_cast<std::uint32_t>(std::llround(std::ldexp(r.k2(), 22)));
+            c.health = o.health;
+            c.health_sticky = r.health_sticky;
+            c.miss_cnt = r.miss;
+            c.stale_cnt = r.stale;
+            c.range_rej = r.range_rej;
+            c.rate_rej = r.rate_rej;
+            c.period_rej = r.period_rej;
+            c.trq_sat_cnt = r.trq_sat;
+            c.beta_lim_cnt = r.beta_lim;
+        }
+        health_ = h;
+        last_idx_ = std::max(idx, last_idx_);
+    }
+    if (rel >= 0) { last_seq_ = f.seq; }
+    m.revision = t_.c.revision;
     t.utime_us = f.utime;
     t.seq = f.seq;
     t.step = step_;
     t.mode = FSW_MODE_HOLD;
     t.host_missed = missed_;
     t.host_rejected = rejected_;
-    t.act_cnt[0] = u;
-    t.mod_health = h;
-    out.n_counts = 1;
-    out.counts[0] = u;
+    for (std::size_t k = 0; k < PD_N_CH; ++k) { t.act_cnt[k] = act_[k]; }
+    t.mod_health = health_;
+    out.n_counts = static_cast<std::int16_t>(PD_N_ACT);
+    for (std::size_t k = 0; k < PD_N_CH; ++k) { out.counts[k] = act_[k]; }
     out.fsw_mode = static_cast<std::int32_t>(FSW_MODE_HOLD);
     out.tlm_layout_version = static_cast<std::int32_t>(PD_TLM_LAYOUT);
     out.tlm_len = static_cast<std::int16_t>(fsw_tlm_encode(&t, out.tlm, static_cast<std::uint32_t>(bridge::kMaxTlm)));
