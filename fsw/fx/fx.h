@@ -114,6 +114,12 @@ int32_t  fx_mul(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_
 int32_t  fx_div(int32_t a, uint32_t qa, int32_t b, uint32_t qb, uint32_t qr, fx_status_t *st);
 /* round(num / den) half away from zero on unsigned magnitudes; den > 0 (den == 0 -> UINT64_MAX). */
 uint64_t fx_udiv_rnd64(uint64_t num, uint64_t den);
+/* round(a b / 2^n) half away from zero for an int64 a; n in [0, 62] else ARG and 0; results beyond
+ * int64 saturate (SAT_HI / SAT_LO). Exact for every a, b. */
+int64_t  fx_mul64_shr(int64_t a, int32_t b, uint32_t n, fx_status_t *st);
+/* round(a 2^k / d) half away from zero, d > 0; |a| 2^k >= 2^63 saturates (SAT_HI / SAT_LO),
+ * d == 0 -> DIV0 and 0, k > 62 -> ARG and 0. */
+int64_t  fx_div64_shl(int64_t a, uint32_t k, uint64_t d, fx_status_t *st);
 
 /*
  * Reciprocal for repeated division by one divisor: made with one 64/32 divide, then each

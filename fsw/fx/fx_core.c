@@ -274,6 +274,87 @@ uint64_t fx_udiv_rnd64(uint64_t num, uint64_t den)
     return q;
 }
 
+/* (hi 2^32 + lo + 2^(n-1)) >> n for n <= 32, lo < 2^32; *big when the quotient is >= 2^63 */
+static uint64_t shr96_small(uint64_t hi, uint64_t lo, uint32_t n, bool *big)
+{
+    uint64_t h = hi;
+    uint64_t l = lo;
+    uint64_t q = 0u;
+    if (n > 0u) {
+        l += (uint64_t)1u << (n - 1u);
+        h += l >> 32;
+        l &= 0xFFFFFFFFu;
+    }
+    /* q = h 2^(32-n) + l 2^-n < 2^63 iff h < 2^(31+n); q = 2^63 exactly is reported as big too */
+    *big = (h >> (31u + n)) != 0u;
+    if (!*big) {
+        q = (h << (32u - n)) | (l >> n);
+    } else if ((h == ((uint64_t)1u << (31u + n))) && ((l >> n) == 0u)) {
+        q = (uint64_t)1u << 63;   /* the caller accepts it as INT64_MIN */
+    } else {
+        q = 0u;
+    }
+    return q;
+}
+
+/*
+ * round(a b / 2^n), half away from zero, for the 64 x 32 products of a wide state (an estimator's
+ * int64 states times int32 coefficients): the 95-bit product is formed as two exact 64-bit partial
+ * products, |a| <= 2^63 and |b| <= 2^31 keep each below 2^63, so nothing wraps.
+ */
+int64_t fx_mul64_shr(int64_t a, int32_t b, uint32_t n, fx_status_t *st)
+{
+    int64_t r = 0;
+    if (n > 62u) {
+        *st |= FX_ST_ARG;
+    } else {
+        const uint64_t ma = (a < 0) ? ((uint64_t)0 - (uint64_t)a) : (uint64_t)a;
+        const uint64_t mb = (uint64_t)fx_uabs(b);
+        const bool neg = (a < 0) != (b < 0);
+        const uint64_t p_hi = (ma >> 32) * mb;              /* <= 2^31 2^31 */
+        const uint64_t p_lo = (ma & 0xFFFFFFFFu) * mb;      /* < 2^63 */
+        const uint64_t hi = p_hi + (p_lo >> 32);            /* |a b| = hi 2^32 + lo, hi < 2^62 + 2^31 */
+        const uint64_t lo = p_lo & 0xFFFFFFFFu;
+        bool big = false;
+        /* n > 32: + 2^(n-1) lands in hi, and lo < 2^32 cannot carry into the quotient */
+        const uint64_t q = (n > 32u) ? ((hi + ((uint64_t)1u << (n - 33u))) >> (n - 32u))
+                                     : shr96_small(hi, lo, n, &big);
+        if (big && neg && (q == ((uint64_t)1u << 63))) {
+            r = INT64_MIN;
+        } else if (big) {
+            *st |= neg ? FX_ST_SAT_LO : FX_ST_SAT_HI;
+            r = neg ? INT64_MIN : INT64_MAX;
+        } else {
+            r = neg ? -(int64_t)q : (int64_t)q;
+        }
+    }
+    return r;
+}
+
+/*
+ * round(a 2^k / d), half away from zero, d > 0, k in [0, 62]; |a| 2^k >= 2^63 saturates (SAT_HI /
+ * SAT_LO), d == 0 is DIV0 and 0, k > 62 is ARG and 0.
+ */
+int64_t fx_div64_shl(int64_t a, uint32_t k, uint64_t d, fx_status_t *st)
+{
+    int64_t r = 0;
+    if (k > 62u) {
+        *st |= FX_ST_ARG;
+    } else if (d == 0u) {
+        *st |= FX_ST_DIV0;
+    } else {
+        const uint64_t ma = (a < 0) ? ((uint64_t)0 - (uint64_t)a) : (uint64_t)a;
+        if ((ma >> (63u - k)) != 0u) {
+            *st |= (a < 0) ? FX_ST_SAT_LO : FX_ST_SAT_HI;
+            r = (a < 0) ? INT64_MIN : INT64_MAX;
+        } else {
+            const uint64_t q = fx_udiv_rnd64(ma << k, d);   /* <= ma 2^k < 2^63 */
+            r = (a < 0) ? -(int64_t)q : (int64_t)q;
+        }
+    }
+    return r;
+}
+
 /*
  * |a| / |b| * 2^k rounded, for magnitudes ua <= 2^31, 1 <= ub <= 2^31 and k in [-40, 80].
  * *big is set when the quotient is certainly >= 2^33 (it then saturates in the caller).

@@ -218,8 +218,113 @@ UT_TEST(shift_convert_sweep)
     printf("fx_shr_rnd64/fx_convert: %llu cases, all correctly rounded\n", (unsigned long long)checked);
 }
 
+static int64_t o_sat64(i128 v, fx_status_t *st)
+{
+    if (v > INT64_MAX) {
+        *st |= FX_ST_SAT_HI;
+        return INT64_MAX;
+    }
+    if (v < INT64_MIN) {
+        *st |= FX_ST_SAT_LO;
+        return INT64_MIN;
+    }
+    return (int64_t)v;
+}
+
+/* round(a 2^k / d) half away from zero, exact in 128 bits (|a| 2^k < 2^126). */
+static i128 o_divk(int64_t a, uint32_t k, uint64_t d)
+{
+    u128 m = (u128)((a < 0) ? -(i128)a : (i128)a) << k;
+    u128 q = m / d;
+    u128 r = m % d;
+    if (2u * r >= (u128)d) {
+        q++;
+    }
+    return (a < 0) ? -(i128)q : (i128)q;
+}
+
+/* fx_mul64_shr and fx_div64_shl (the wide operations of the frequency estimator) against the 128-bit
+   oracle: every shift, edge operands (int64 and int32 extremes, powers of two and their neighbours,
+   exact ties) and seeded random ones; results and status bits must be identical. */
+UT_TEST(wide_sweep)
+{
+    int32_t edges[200];
+    size_t ne = edge_set(edges);
+    int64_t a64[64];
+    size_t na = 0u;
+    uint64_t seed = 4242u;
+    uint64_t checked = 0u;
+    uint32_t n;
+    size_t i;
+    size_t j;
+    a64[na++] = INT64_MIN;
+    a64[na++] = INT64_MIN + 1;
+    a64[na++] = INT64_MAX;
+    a64[na++] = 0;
+    for (n = 0u; n < 15u; n++) {
+        int64_t p = (int64_t)1 << (4u * n + 2u);
+        a64[na++] = p;
+        a64[na++] = -p - 1;
+        a64[na++] = p + 1;
+        a64[na++] = -p;
+    }
+    for (n = 0u; n <= 62u; n++) {
+        for (i = 0u; i < na + 200u; i++) {
+            int64_t a = (i < na) ? a64[i] : (int64_t)ut_rng_next(&seed);
+            if ((i >= na) && ((i & 1u) != 0u)) {
+                a >>= (ut_rng_next(&seed) % 60u);  /* small magnitudes too */
+            }
+            for (j = 0u; j < ne; j += 3u) {
+                fx_status_t s1 = 0u;
+                fx_status_t s2 = 0u;
+                int64_t got = fx_mul64_shr(a, edges[j], n, &s1);
+                int64_t want = o_sat64(o_shr((i128)a * edges[j], n), &s2);
+                if (got != want || s1 != s2) {
+                    UT_CHECK_EQ(got, want);
+                    UT_CHECK_UEQ(s1, s2);
+                    printf("  mul64 mismatch: a=%lld b=%d n=%u\n", (long long)a, edges[j], n);
+                    return;
+                }
+                if (edges[j] != 0) {
+                    uint64_t d = (uint64_t)fx_uabs(edges[j]) * ((ut_rng_next(&seed) & 1u) ? 1u : 3u);
+                    s1 = 0u;
+                    s2 = 0u;
+                    got = fx_div64_shl(a, n, d, &s1);
+                    {
+                        u128 ma = (u128)((a < 0) ? -(i128)a : (i128)a) << n;
+                        want = (ma >= ((u128)1 << 63)) ? o_sat64((a < 0) ? -((i128)1 << 64) : ((i128)1 << 64), &s2)
+                                                        : (int64_t)o_divk(a, n, d);
+                    }
+                    if (got != want || s1 != s2) {
+                        UT_CHECK_EQ(got, want);
+                        UT_CHECK_UEQ(s1, s2);
+                        printf("  div64 mismatch: a=%lld n=%u d=%llu\n", (long long)a, n, (unsigned long long)d);
+                        return;
+                    }
+                    checked++;
+                }
+                checked++;
+            }
+        }
+    }
+    {
+        fx_status_t st = 0u;
+        UT_CHECK_EQ(fx_mul64_shr(5, 7, 63u, &st), 0);
+        UT_CHECK_UEQ(st, FX_ST_ARG);
+        st = 0u;
+        UT_CHECK_EQ(fx_div64_shl(5, 1u, 0u, &st), 0);
+        UT_CHECK_UEQ(st, FX_ST_DIV0);
+        st = 0u;
+        UT_CHECK_EQ(fx_div64_shl(5, 63u, 1u, &st), 0);
+        UT_CHECK_UEQ(st, FX_ST_ARG);
+    }
+    printf("fx_mul64_shr/fx_div64_shl: %llu cases, all identical to the 128-bit oracle\n",
+           (unsigned long long)checked);
+}
+
 int main(void)
 {
-    UT_CASES(cases) = { UT_CASE(mul_sweep), UT_CASE(div_sweep), UT_CASE(shift_convert_sweep) };
+    UT_CASES(cases) = { UT_CASE(mul_sweep), UT_CASE(div_sweep), UT_CASE(shift_convert_sweep),
+                         UT_CASE(wide_sweep) };
     return UT_RUN("fx_core_sweep", cases);
 }
