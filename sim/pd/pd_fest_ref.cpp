@@ -273,14 +273,20 @@ void FestRef::reset(bool keep_predictor)
     // k_in_period_ is the law's phase and is not reset.
 }
 
-double FestRef::c_of(double f_hz, double k2) const
+double FestRef::c_of(double f_hz, double k2) const { return 1.0 / cinv_of(f_hz, k2); }
+
+double FestRef::cinv_of(double f_hz, double k2) const
 {
+    // 1 / c is what the flight table carries (multiplies only on board), so it is 1 / c that is
+    // interpolated, here as there.
     const double u = clampd((f_hz - p_.c_f0_hz) / p_.c_df_hz, 0.0, kFestCF - 1.0);
     const double v = clampd((k2 - p_.c_k20) / p_.c_dk2, 0.0, kFestCK - 1.0);
     const int i = std::min(static_cast<int>(u), kFestCF - 2), j = std::min(static_cast<int>(v), kFestCK - 2);
     const double fu = u - i, fv = v - j;
-    const double c0 = p_.c[i][j] + (p_.c[i][j + 1] - p_.c[i][j]) * fv;
-    const double c1 = p_.c[i + 1][j] + (p_.c[i + 1][j + 1] - p_.c[i + 1][j]) * fv;
+    const double c00 = 1.0 / p_.c[i][j], c01 = 1.0 / p_.c[i][j + 1];
+    const double c10 = 1.0 / p_.c[i + 1][j], c11 = 1.0 / p_.c[i + 1][j + 1];
+    const double c0 = c00 + (c01 - c00) * fv;
+    const double c1 = c10 + (c11 - c10) * fv;
     return c0 + (c1 - c0) * fu;
 }
 
@@ -556,8 +562,8 @@ void FestRef::step_td(double k2)
     f_moved_ = f_moved_ || (adapt && line_ok);
     if (adapt && line_ok) {
         const double f_raw = f_rep / p_.m_ch;
-        const double f1 = f_raw / c_of(f_raw, k2);
-        f_hat_hz_ = clampd(f_raw / c_of(f1, k2), p_.f_lo_hz, p_.f_hi_hz);
+        const double f1 = f_raw * cinv_of(f_raw, k2);
+        f_hat_hz_ = clampd(f_raw * cinv_of(f1, k2), p_.f_lo_hz, p_.f_hi_hz);
     }
     out_.gate_open = gate_;
     out_.rms_e_rad = r_e;

@@ -68,8 +68,9 @@ constexpr int kFestDecim = 4;       // samples per Td
 constexpr int kFestMaxSections = 2; // yaw: 2
 constexpr int kFestEnv = 16;        // yaw: envelope history (periods) for the single-tone proof
 constexpr int kFestNr = 2;          // rigid-response regressors: relative Ix, relative H
-constexpr int kFestCF = 25;         // c table: f = 0.005 .. 0.125 Hz step 0.005
-constexpr int kFestCK = 21;         // c table: k2 = 0 .. 1000 step 50
+constexpr int kFestCF = 13;         // c table: f = 0.005 .. 0.125 Hz step 0.01
+constexpr int kFestCK = 11;         // c table: k2 = 0 .. 1000 step 100 (the flight table's grid: 143
+                                    // words a channel fit the 4 KiB table image; fsw/pd/pd_fest.h)
 
 enum class FestState : int { Acquire = 0, Track = 1, Hold = 2, Fault = 3 };
 const char *fest_state_name(FestState s);
@@ -146,7 +147,7 @@ struct FestParams {
     double f0_hz = 0.05;            // prior
     double pub_hyst = 0.005;        // published f_hat moves in TRACK only by >= 0.5 %
     double f_lo_hz = 0.008, f_hi_hz = 0.12;       // output clamps
-    double c_f0_hz = 0.005, c_df_hz = 0.005, c_k20 = 0.0, c_dk2 = 50.0;
+    double c_f0_hz = 0.005, c_df_hz = 0.01, c_k20 = 0.0, c_dk2 = 100.0;
     double c[kFestCF][kFestCK] = {};  // observed / partial frequency of mode 1, closed loop
 
     // confidence (per period)
@@ -217,7 +218,8 @@ public:
     FestOut step(bool y_valid, double y_rad, double M_applied_nm, double k2_in_use);
     const FestOut &out() const { return out_; }
     const FestParams &params() const { return p_; }
-    double c_of(double f_hz, double k2) const;  // bilinear, clamped to the grid
+    double c_of(double f_hz, double k2) const;  // 1 / cinv_of
+    double cinv_of(double f_hz, double k2) const;  // 1 / c bilinear on the grid (as flight), clamped to it
 
 private:
     void step_td(double k2);
