@@ -6,4 +6,5 @@ list(APPEND FSW_SOURCES
   pd/pd_table.c
   pd/pd_mission.c
   pd/pd_tlm.c
+  pd/pd_fest.c
 )
