@@ -101,10 +101,11 @@ static uint32_t pd_check_common(const pd_common_t *c)
         const uint64_t d = (have > want) ? (have - want) : (want - have);
         w |= (d > 1u) ? PD_WHY_PERIOD : 0u;
     }
-    if ((c->law > (uint8_t)PD_LAW_LITERAL) || (c->src > (uint8_t)PD_SRC_GROUND) ||
+    if ((c->law > (uint8_t)PD_LAW_LITERAL) || (c->src > (uint8_t)PD_SRC_ADAPTIVE) ||
         (c->sched_law > (uint8_t)PD_LAW_LITERAL) ||
-        ((c->src != (uint8_t)PD_SRC_FIXED) && (c->sched_law != c->law))) {
-        w |= PD_WHY_MODE;   /* ADAPTIVE (2) has no estimator in this build */
+        ((c->src != (uint8_t)PD_SRC_FIXED) && (c->sched_law != c->law)) ||
+        ((c->src == (uint8_t)PD_SRC_ADAPTIVE) && (ty_us != (uint64_t)PD_TY_EXACT_US))) {
+        w |= PD_WHY_MODE;   /* the estimator is tuned for Ty = 0.25 s only (pd_fest.h) */
     }
     if ((c->n_y < 2u) || (c->n_y > 64u) || ((c->n_y & (uint8_t)(c->n_y - 1u)) != 0u) ||
         (c->n_bad_max >= c->n_y)) {
@@ -156,6 +157,9 @@ fsw_rc_t pd_params_check(const pd_params_t *p, uint32_t *why)
     if (p != NULL) {
         w = pd_check_common(&p->c);
         w |= pd_check_gains(p, (w & PD_WHY_PERIOD) == 0u);
+        if ((p->c.src == (uint8_t)PD_SRC_ADAPTIVE) && (pd_fest_check(&p->g.fest) != 0u)) {
+            w |= PD_WHY_MODE;   /* no usable estimator block on this channel (yaw: not ported) */
+        }
         if (w == 0u) {
             rc = FSW_OK;
         } else {
@@ -210,8 +214,51 @@ static uint32_t k2_wanted(const pd_state_t *s, const pd_params_t *p)
     uint32_t k2 = s->k2_fixed_q22;
     if (s->src == (uint8_t)PD_SRC_GROUND) {
         k2 = pd_sched_k2(p, s->f_ground_q32);
+    } else if (s->src == (uint8_t)PD_SRC_ADAPTIVE) {
+        k2 = s->k2_adapt_q22;
+    } else {
+        /* FIXED */
     }
     return k2;
+}
+
+/* ADAPTIVE from a cold start: the estimator at its prior, k2_cold, its period aligned with the law's */
+static void adaptive_start(pd_state_t *s, const pd_params_t *p)
+{
+    pd_fest_init(&s->fest);
+    s->fest.k_in_period = s->nu;
+    s->k2_adapt_q22 = clamp_k2(p, p->g.k2_cold_q22);
+    s->f_pub_prev_q32 = s->fest.f_hat_q32;
+    s->n_inv_fest = 0u;
+}
+
+/* One estimator sample with the torque that acts over the coming sample, and at its period end the
+   re-tune rule of spec 40 §4.2: FAULT -> k2_cold; a confident estimate that moved < 2 % since the last
+   period end, over a period with at most n_bad_max invalid samples -> the schedule at it; else k2 stays. */
+static void adaptive_sample(pd_state_t *s, const pd_params_t *p, bool ok, int32_t y, int32_t m)
+{
+    pd_fest_step(&s->fest, &p->g.fest, (uint32_t)p->c.n_y, ok, y, m, s->k2_q22);
+    s->n_inv_fest += ok ? 0u : 1u;
+    if (s->fest.period_end) {
+        const uint64_t f = (uint64_t)s->fest.f_hat_q32;
+        const uint64_t fp = (uint64_t)s->f_pub_prev_q32;
+        const uint64_t d = (f > fp) ? (f - fp) : (fp - f);
+        if (s->fest.state == (uint8_t)PD_FEST_FAULT) {
+            s->k2_adapt_q22 = clamp_k2(p, p->g.k2_cold_q22);
+        } else if (s->fest.confident && ((d * 50u) < fp) && (s->n_inv_fest <= (uint32_t)p->c.n_bad_max)) {
+            s->k2_adapt_q22 = pd_sched_k2(p, s->fest.f_hat_q32);
+        } else {
+            /* k2 stays */
+        }
+        s->f_pub_prev_q32 = s->fest.f_hat_q32;
+        s->n_inv_fest = 0u;
+    }
+    s->tlm.fest_f_q32 = s->fest.f_hat_q32;
+    s->tlm.fest_word = (uint32_t)s->fest.state | (s->fest.confident ? 4u : 0u) | (s->fest.gate ? 8u : 0u) |
+                       ((s->fest.fault & 0xFFu) << 8);
+    s->tlm.fest_p_a_q30 = s->fest.p_a_q30;
+    s->tlm.fest_att_q16 = s->fest.att_q16;
+    s->tlm.fest_resets = s->fest.resets;
 }
 
 void pd_reset_counters(pd_state_t *s)
@@ -233,16 +280,26 @@ void pd_init(pd_state_t *s, const pd_params_t *p)
     s->src = p->c.src;
     s->f_ground_q32 = p->c.f_ground_q32;
     s->k2_fixed_q22 = clamp_k2(p, p->g.k2_nom_q22);
+    if (s->src == (uint8_t)PD_SRC_ADAPTIVE) {
+        adaptive_start(s, p);
+    }
     set_gains(s, p, k2_wanted(s, p));
     s->tlm.k2_q22 = s->k2_q22;
 }
 
 bool pd_set_source(pd_state_t *s, const pd_params_t *p, uint8_t src)
 {
-    /* GROUND needs a schedule synthesised for the law in use (pd_params_check's rule for the boot source) */
-    const bool ok = (src == (uint8_t)PD_SRC_FIXED) ||
-                    ((src == (uint8_t)PD_SRC_GROUND) && (p->c.sched_law == p->c.law));
+    /* GROUND and ADAPTIVE need a schedule synthesised for the law in use, ADAPTIVE an estimator for the
+       channel at Ty = 0.25 s (pd_params_check's rules for the boot source) */
+    const uint64_t ty_us = (uint64_t)p->c.period_us * (uint64_t)p->c.n_div;
+    const bool sched_ok = p->c.sched_law == p->c.law;
+    const bool fest_ok = sched_ok && (ty_us == (uint64_t)PD_TY_EXACT_US) && (pd_fest_check(&p->g.fest) == 0u);
+    const bool ok = (src == (uint8_t)PD_SRC_FIXED) || ((src == (uint8_t)PD_SRC_GROUND) && sched_ok) ||
+                    ((src == (uint8_t)PD_SRC_ADAPTIVE) && fest_ok);
     if (ok) {
+        if ((src == (uint8_t)PD_SRC_ADAPTIVE) && (s->src != src)) {
+            adaptive_start(s, p);
+        }
         s->src = src;
     }
     return ok;
@@ -399,6 +456,9 @@ void pd_note_gap(pd_state_t *s, const pd_params_t *p, uint32_t n)
         if (period_step(s, p, false, 0, &h) && (p->c.law == (uint8_t)PD_LAW_LITERAL)) {
             literal_update(s, p, &h);
         }
+        if (s->src == (uint8_t)PD_SRC_ADAPTIVE) {
+            adaptive_sample(s, p, false, 0, s->m_last_q28);   /* the plant held the last torque */
+        }
         fx_cnt_inc(&s->tlm.miss_cnt);
     }
     if (n > k) {
@@ -504,6 +564,11 @@ void pd_step(pd_state_t *s, const pd_params_t *p, const pd_in_t *in, pd_out_t *o
     mean_done = period_step(s, p, ok, y, &h);
     m = law_torque(s, p, ok, mean_done, y, dy, &h, &st);
     m = beta_rule(s, p, in, m, &h);
+    if (s->src == (uint8_t)PD_SRC_ADAPTIVE) {
+        adaptive_sample(s, p, ok, y, m);
+        h |= ((uint32_t)s->fest.state << 12) & PD_H_FEST;
+        h |= (s->fest.state == (uint8_t)PD_FEST_FAULT) ? PD_H_FEST_FAULT : 0u;
+    }
 
     s->m_last_q28 = m;
     out->m_cnt = (int32_t)fx_shr_rnd64((int64_t)m, 8u, &st);   /* |m| <= 2^30: < 2^22 counts */

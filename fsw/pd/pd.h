@@ -29,6 +29,7 @@
 #include "fx.h"
 #include "fx_rc.h"
 #include "pd_ids.h"
+#include "pd_fest.h"
 
 #define PD_N_CH        3u           /* channels: yaw, roll, pitch (pd_iface.CHANNELS) */
 #define PD_N_NODES     19u          /* schedule nodes: f = f0 + i df, 0.010 .. 0.100 Hz at 0.005 Hz */
@@ -39,7 +40,7 @@
 #define PD_DY_MAX_Q30  ((int32_t)16777216)       /* 2^24: |dy_max| <= 2^-6 rad, the accumulator headroom */
 #define PD_M_MAX_Q28   ((int32_t)1073741824)     /* 2^30: M_max <= 4 N m, the actuator count fits 2^22 */
 #define PD_ROLL_K2_CAP_Q22 ((uint32_t)150u << 22) /* spec 40 §3.4: roll's sampled gimbal-body mode */
-#define PD_TY_EXACT_US 250000u                   /* Ty at which 1/Ty = 4 is folded in exactly */
+#define PD_TY_EXACT_US 250000u                   /* Ty at which 1/Ty = 4 is folded in exactly; the estimator's Ty */
 #define PD_GAP_DIFF_MAX 3u                        /* link gaps up to this many samples are differenced across */
 
 /* What the three channels share (the common part of the mission table). */
@@ -76,6 +77,7 @@ typedef struct {
     uint32_t k2_min_q22;    /* every scheduled or commanded k2 is clamped to [k2_min, k2_max] */
     uint32_t k2_max_q22;    /* the channel's hard cap */
     uint32_t k2_node_q22[PD_N_NODES];   /* non-increasing in f */
+    pd_fest_params_t fest;              /* the channel's estimator block (ADAPTIVE; pd_fest.h) */
 } pd_gains_t;
 
 /* The parameters of one channel instance. */
@@ -105,6 +107,11 @@ typedef struct {
     uint32_t period_rej;
     uint32_t trq_sat_cnt;
     uint32_t beta_lim_cnt;
+    uint32_t fest_f_q32;    /* estimator: published f_hat [Hz] (f0 while it has not run) */
+    uint32_t fest_word;     /* estimator: state (bits 0..1), confident (2), gate (3), fault reasons (8..15) */
+    uint32_t fest_p_a_q30;  /* estimator: RLS P of the notch */
+    uint32_t fest_att_q16;  /* estimator: notch rms(out) / rms(in) */
+    uint32_t fest_resets;   /* estimator: FAULTs since init */
 } pd_ch_tlm_t;
 
 typedef struct {
@@ -139,6 +146,11 @@ typedef struct {
     bool     have_xbar;
     uint32_t zero_run;      /* averaged modes: samples left at M = 0 after a bad period */
     int32_t  m_held_q28;    /* LITERAL: the torque held over the period */
+    /* ADAPTIVE: the estimator and the re-tune rule's memory */
+    pd_fest_t fest;
+    uint32_t k2_adapt_q22;   /* the k2 the re-tune rule chose (k2_cold at entry and after a FAULT) */
+    uint32_t f_pub_prev_q32; /* the estimator's published f_hat at the previous period end */
+    uint32_t n_inv_fest;     /* samples of the current control period the estimator saw invalid */
     pd_ch_tlm_t tlm;
 } pd_state_t;
 
@@ -173,7 +185,9 @@ uint32_t pd_sched_k2(const pd_params_t *p, uint32_t f_q32);
 void     pd_note_gap(pd_state_t *s, const pd_params_t *p, uint32_t n);
 
 /* Telecommand effects, from the next sample on. */
-/* FIXED, or GROUND when the table's schedule was made for its law; false (nothing changes) otherwise. */
+/* FIXED; GROUND when the table's schedule was made for its law; ADAPTIVE when moreover Ty = 0.25 s and
+   the channel's estimator block passes pd_fest_check (not yaw: pd_fest.h). Entering ADAPTIVE starts the
+   estimator cold (k2_cold, the prior f0). false (nothing changes) otherwise. */
 bool     pd_set_source(pd_state_t *s, const pd_params_t *p, uint8_t src);
 void     pd_set_f_ground(pd_state_t *s, uint32_t f_q32);
 void     pd_set_k2_fixed(pd_state_t *s, const pd_params_t *p, uint32_t k2_q22);   /* clamped */

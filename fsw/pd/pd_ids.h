@@ -11,14 +11,14 @@
 #define PD_H_LAW_SH                  8u
 #define PD_H_SRC                     (0x00000C00u)  /* gain source (PD_SRC_*) */
 #define PD_H_SRC_SH                  10u
-#define PD_H_FEST                    (0x00003000u)  /* estimator state (0: no estimator in this build) */
+#define PD_H_FEST                    (0x00003000u)  /* estimator state (ACQUIRE 0, TRACK 1, HOLD 2, FAULT 3) while SRC is ADAPTIVE, else 0 */
 #define PD_H_FEST_SH                 12u
 #define PD_H_STALE                   (0x00004000u)  /* no usable sample this step (missing, stale, rejected): torque held, then zero */
 #define PD_H_FROZEN                  (0x00008000u)  /* attitude bit-identical for n_frozen samples under torque: refused */
 #define PD_H_TRQ_SAT                 (0x00010000u)  /* command clamped to +-M_max (the designated saturation point) */
 #define PD_H_BETA_WARN               (0x00020000u)  /* |beta| > beta_warn: the linear model is strained */
 #define PD_H_BETA_LIM                (0x00040000u)  /* |beta| >= beta_lim: outward torque zeroed */
-#define PD_H_FEST_FAULT              (0x00080000u)  /* estimator fault (reserved: no estimator in this build) */
+#define PD_H_FEST_FAULT              (0x00080000u)  /* estimator in FAULT this period (k2_cold applied) */
 #define PD_H_FALLBACK_GAIN           (0x00100000u)  /* k2 is k2_cold */
 #define PD_H_RETUNE                  (0x00200000u)  /* k2 changed at this sample (pulse) */
 #define PD_H_TABLE_DEFAULT           (0x00400000u)  /* flying the boot table */
@@ -30,7 +30,7 @@
 #define PD_WHY_PERIOD                (0x00000001u)  /* period: zero, not the executive's, or 1/Ty not within 1 LSB of n_div period_us */
 #define PD_WHY_GAIN                  (0x00000002u)  /* gain: k0 k1 >= 2^10, k0 k2_max / Ty >= 2^16, or k2 order (min <= nom, cold <= max) */
 #define PD_WHY_LIMIT                 (0x00000004u)  /* torque or sensor limit out of range */
-#define PD_WHY_MODE                  (0x00000008u)  /* law or gain source unknown, ADAPTIVE without an estimator, or schedule law != law */
+#define PD_WHY_MODE                  (0x00000008u)  /* law or gain source unknown, ADAPTIVE on a channel whose estimator block pd_fest_check refuses or with Ty != 0.25 s, or schedule law != law */
 #define PD_WHY_SCHED                 (0x00000010u)  /* schedule: node above k2_max, table increasing in f, or node spacing zero */
 #define PD_WHY_NY                    (0x00000020u)  /* n_y not a power of two in [2, 64], or n_bad_max >= n_y */
 #define PD_WHY_CAP                   (0x00000040u)  /* roll k2_max above its sampled-mode cap (150 s) */
@@ -44,12 +44,12 @@
 /* gain source (spec 40 §4.2) */
 #define PD_SRC_FIXED                 0u  /* k2_nom of the table or SET_K2 */
 #define PD_SRC_GROUND                1u  /* the schedule at the commanded f */
-#define PD_SRC_ADAPTIVE              2u  /* the schedule at the estimate (refused: no estimator yet) */
+#define PD_SRC_ADAPTIVE              2u  /* the schedule at the on-board estimate (pitch, roll; yaw refused) */
 
 /* Telecommands: local ids; the wire id is the mission's namespace | local id. */
 #define PD_CMD_NONE                  0u
 #define PD_CMD_RESET_COUNTERS        1u  /* clear the channels' counters and sticky health */
-#define PD_CMD_SET_SOURCE            2u  /* gain source FIXED (0) or GROUND (1); takes effect at the next sample */
+#define PD_CMD_SET_SOURCE            2u  /* gain source FIXED (0), GROUND (1) or ADAPTIVE (2: on the channels with a usable estimator, pitch and roll; a cold start at k2_cold); takes effect at the next sample */
 #define PD_CMD_SET_F                 3u  /* GROUND at this commanded f_min */
 #define PD_CMD_SET_K2                4u  /* FIXED at these k2 (yaw, roll, pitch), each limited to [k2_min, k2_max] */
 #define PD_CMD_MAX                   4u
@@ -58,9 +58,9 @@
 #define PD_N_SENS                    6u
 #define PD_N_ACT                     3u
 #define PD_TBL_ID                    0x0B07u
-#define PD_TBL_LAYOUT                2u
-#define PD_TLM_BYTES                 160u  /* bytes of the block pd_tlm_wr writes */
-#define PD_TLM_LAYOUT                0x00050002u  /* layout version of the whole telemetry */
-#define PD_TLM_TOTAL_BYTES           264u  /* bytes of the whole telemetry: header, actuators, health, block */
+#define PD_TBL_LAYOUT                3u
+#define PD_TLM_BYTES                 220u  /* bytes of the block pd_tlm_wr writes */
+#define PD_TLM_LAYOUT                0x00050003u  /* layout version of the whole telemetry */
+#define PD_TLM_TOTAL_BYTES           324u  /* bytes of the whole telemetry: header, actuators, health, block */
 
 #endif

@@ -7,7 +7,8 @@
  * spec 40 §8, and the executive's stale-frame rule still applies to the whole frame. Commit rule: a
  * validated table becomes active at the next step boundary and, in the mode, restarts the channels
  * (their period, derivative and telecommanded overrides follow the new table).
- * Telecommands: RESET_COUNTERS, SET_SOURCE (0 FIXED, 1 GROUND), SET_F (1e-6 Hz; selects GROUND),
+ * Telecommands: RESET_COUNTERS, SET_SOURCE (0 FIXED, 1 GROUND, 2 ADAPTIVE: taken by the channels with
+ * a usable estimator block, pitch and roll; yaw keeps its source), SET_F (1e-6 Hz; selects GROUND),
  * SET_K2 (three words, 2^-8 s; selects FIXED): one command sets a whole gain source.
  */
 #include "pd_mission.h"
@@ -35,15 +36,19 @@ void pd_params_of(const pd_table_t *t, uint32_t k, pd_params_t *p)
     p->g = t->ch[(k < PD_N_CH) ? k : 0u];
 }
 
-uint32_t pd_table_check(const pd_table_t *t, uint32_t *why)
+uint32_t pd_table_check(const pd_table_t *t, pd_params_t *p, uint32_t *why)
 {
     uint32_t w = 0u;
     uint32_t k;
     for (k = 0u; k < PD_N_CH; k++) {
-        pd_params_t p;
         uint32_t wk = 0u;
-        pd_params_of(t, k, &p);
-        (void)pd_params_check(&p, &wk);
+        pd_params_of(t, k, p);
+        if ((((uint32_t)t->c.ch_mask >> k) & 1u) == 0u) {
+            /* a channel that does not fly needs no gain source (yaw's estimator block is refused:
+               an ADAPTIVE table flies pitch and roll with ch_mask 6) */
+            p->c.src = (uint8_t)PD_SRC_FIXED;
+        }
+        (void)pd_params_check(p, &wk);
         w |= wk;
     }
     if (t->ch[1].k2_max_q22 > PD_ROLL_K2_CAP_Q22) {
@@ -74,7 +79,7 @@ uint32_t pd_mis_check(pd_mis_t *b, const uint8_t *pl, uint32_t len, uint32_t per
     uint32_t d = FSW_VETO_UNDECODED;
     /* The revision is informative; the check does not depend on it. */
     if (pd_table_decode(pl, len, 0u, &b->cand) == FSW_OK) {
-        if (pd_table_check(&b->cand, &why) != 0u) {
+        if (pd_table_check(&b->cand, &b->chk, &why) != 0u) {
             d = fsw_table_veto_detail(why);
         } else if (b->cand.c.period_us != period_us) {
             d = fsw_table_veto_detail(PD_WHY_PERIOD);
@@ -144,7 +149,7 @@ static void telecommand(pd_mis_t *b, const fsw_acc_t *acc)
         if (acc->tc == PD_CMD_RESET_COUNTERS) {
             pd_reset_counters(s);
         } else if (acc->tc == PD_CMD_SET_SOURCE) {
-            if ((acc->tc_arg[0] >= 0) && (acc->tc_arg[0] <= (int32_t)PD_SRC_GROUND)) {
+            if ((acc->tc_arg[0] >= 0) && (acc->tc_arg[0] <= (int32_t)PD_SRC_ADAPTIVE)) {
                 (void)pd_set_source(s, p, (uint8_t)acc->tc_arg[0]);   /* refused: the source stays */
             }
         } else if (acc->tc == PD_CMD_SET_F) {

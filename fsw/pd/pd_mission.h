@@ -16,12 +16,14 @@
 #include "pd.h"
 #include "fsw_mission.h"
 
-#define PD_TBL_PAYLOAD 356u   /* bytes; pd_table.c documents the layout */
+#define PD_TBL_PAYLOAD 3068u  /* bytes: 56 common + 3 x (100 gains and nodes + 904 estimator block); pd_table.c */
 
 /* The mission's block inside fsw_t. */
 typedef struct {
     pd_table_t  t;                 /* active table, decoded */
     pd_table_t  cand;              /* scratch: a candidate decoded for its module check */
+    pd_params_t chk;               /* scratch: one channel of the candidate for pd_params_check (a
+                                      pd_params_t, estimator block included, is ~1 kB: never on the stack) */
     pd_params_t p[PD_N_CH];        /* each channel's parameters, from t */
     pd_state_t  s[PD_N_CH];
     pd_out_t    o[PD_N_CH];
@@ -43,8 +45,9 @@ uint32_t pd_table_encode(const pd_table_t *t, uint32_t revision, uint8_t *img, u
 fsw_rc_t pd_table_decode(const uint8_t *payload, uint32_t len, uint32_t revision, pd_table_t *t);
 /* One channel's parameters from a decoded table (k < PD_N_CH). */
 void     pd_params_of(const pd_table_t *t, uint32_t k, pd_params_t *p);
-/* The module check of a whole table: pd_params_check of every channel, plus the roll cap. */
-uint32_t pd_table_check(const pd_table_t *t, uint32_t *why);
+/* The module check of a whole table: pd_params_check of every channel, plus the roll cap. p is the
+   caller's scratch for one channel's parameters (overwritten). */
+uint32_t pd_table_check(const pd_table_t *t, pd_params_t *p, uint32_t *why);
 
 /* Adapter (fsw/app/fsw_mission.h). */
 extern const fsw_mis_desc_t PD_MIS_DESC;

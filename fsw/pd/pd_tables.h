@@ -7,5 +7,6 @@
 extern const pd_table_t PD_TBL_DEFAULT;   /* pd_default */
 extern const pd_table_t PD_TBL_LITERAL;   /* pd_literal */
 extern const pd_table_t PD_TBL_AVGP;   /* pd_avgp */
+extern const pd_table_t PD_TBL_ADAPTIVE;   /* pd_adaptive */
 
 #endif /* FSW_PD_TABLES_H */

@@ -1,6 +1,7 @@
 #include "pd/pd_ref.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace ref {
 
@@ -85,7 +86,16 @@ double pd_sched_k2_continuous(const PdChannelTable &t, double f_hz)
 double pd_gain_p(const PdChannelTable &t) { return quant16(t.k0 * t.k1); }
 double pd_gain_d(const PdChannelTable &t, double k2) { return quant16(t.k0 * k2 / t.Ty); }
 
-PdRefChannel::PdRefChannel(const PdChannelTable &t) : t_(t) { init(); }
+PdRefChannel::PdRefChannel(const PdChannelTable &t) : t_(t)
+{
+    // The estimator's double design (sim/pd/pd_fest_ref) is proven against the flight pd_fest by
+    // golden_pd_fest; this channel does not carry it, so an ADAPTIVE table is refused here rather than
+    // flown as FIXED.
+    if (t_.src == PD_SRC_ADAPTIVE) {
+        throw std::invalid_argument("reference channel: gain source ADAPTIVE is not modelled (fly it with --fsw fixed)");
+    }
+    init();
+}
 
 void PdRefChannel::init()
 {

@@ -17,6 +17,7 @@ inline constexpr PdNamedTable kPdTables[] = {
     {"pd_default", &PD_TBL_DEFAULT},
     {"pd_literal", &PD_TBL_LITERAL},
     {"pd_avgp", &PD_TBL_AVGP},
+    {"pd_adaptive", &PD_TBL_ADAPTIVE},
 };
 
 }  // namespace sim

@@ -203,10 +203,16 @@ UT_TEST(params_check_n_y_power_of_two_and_n_bad_max)
     UT_UEQ(why_of(&g_p), PD_WHY_NY);
 }
 
-/* ADAPTIVE has no estimator in this build; a schedule made for another law may fly only FIXED. */
+/* ADAPTIVE needs the channel's estimator block (pitch, roll; yaw's two sections are not ported) and
+   Ty = 0.25 s; a schedule made for another law may fly only FIXED. */
 UT_TEST(params_check_mode_source_and_schedule_law)
 {
     params(CH_PITCH, &g_p);
+    g_p.c.src = (uint8_t)PD_SRC_ADAPTIVE;
+    UT_UEQ(why_of(&g_p), 0u);
+    g_p.g.fest.n_sec = 2u;
+    UT_UEQ(why_of(&g_p), PD_WHY_MODE);
+    params(CH_YAW, &g_p);
     g_p.c.src = (uint8_t)PD_SRC_ADAPTIVE;
     UT_UEQ(why_of(&g_p), PD_WHY_MODE);
     params(CH_PITCH, &g_p);
@@ -574,7 +580,11 @@ UT_TEST(gain_source_changes_take_effect_at_the_next_step)
     o = step(&g_s, &g_p, 1100, true);             /* M = -4 (40 1100 + 2960 100) = -1 360 000 */
     UT_EQ(o.m_q28, -1360000);
     UT_UEQ(o.health, PD_SRC_GROUND << PD_H_SRC_SH);
-    UT_TRUE(!pd_set_source(&g_s, &g_p, (uint8_t)PD_SRC_ADAPTIVE));   /* refused, nothing changes */
+    {
+        pd_params_t q = g_p;
+        q.g.fest.n_sec = 2u;   /* no usable estimator block */
+        UT_TRUE(!pd_set_source(&g_s, &q, (uint8_t)PD_SRC_ADAPTIVE));   /* refused, nothing changes */
+    }
     o = step(&g_s, &g_p, 1100, true);
     UT_UEQ(o.health, PD_SRC_GROUND << PD_H_SRC_SH);
     pd_set_k2_fixed(&g_s, &g_p, K_Q22(300));

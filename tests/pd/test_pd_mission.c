@@ -2,7 +2,8 @@
  * The HOLD mission through the executive (spec 00 §3.3, spec 40 §4.2, §8): boot from the table
  * image into the mission mode, the channel map (attitude counts[0..2] yaw / roll / pitch, gimbal
  * encoders counts[3..5], torques act[0..2]), ch_mask, the telecommands, the roll cap veto on an
- * upload, the step divider, a stale frame, the health word and the telemetry size. Every expected
+ * upload, the step divider, a stale frame, the health word and the telemetry size; the table's
+ * estimator blocks on the wire (offsets, round trip, reserved bytes, loader limits). Every expected
  * count is derived by hand in the comments. Host and target.
  *
  * Boot table gains (tools/pd/design.py; Ty = 0.25 s, 1/Ty = 4): yaw G_P = 2 20 = 40, G_D = 2 745 4
@@ -23,7 +24,9 @@
 static fsw_t g_a;
 static fsw_out_t g_oa;
 static uint8_t g_img[FSW_TABLE_CAP_BYTES];
+static uint8_t g_img2[FSW_TABLE_CAP_BYTES];
 static pd_table_t g_t;
+static pd_params_t g_chk;   /* pd_table_check's scratch */
 
 /* round(v / 2^n) half away from zero, written out (spec 00 §1.3). */
 static int32_t rnd_shr(int64_t v, uint32_t n)
@@ -86,14 +89,13 @@ static fsw_rc_t boot(const pd_table_t *t, uint32_t rev)
     return fsw_init(&g_a, &c, g_img, n);
 }
 
-/* The image (16 + 356 = 372 bytes) in chunks of at most FSW_TABLE_CHUNK_MAX = 256 bytes; the rc
-   and *why of the last chunk (where the candidate completes and is checked). */
-static fsw_rc_t upload(const pd_table_t *t, uint32_t rev, uint32_t *why)
+/* The n bytes of g_img (16 + 3068 = 3084 for a whole image: 13 chunks) in chunks of at most
+   FSW_TABLE_CHUNK_MAX = 256 bytes; the rc and *why of the last chunk (where the candidate completes and
+   is checked). */
+static fsw_rc_t upload_img(uint32_t n, uint32_t rev, uint32_t *why)
 {
     fsw_rc_t rc = FSW_OK;
     uint32_t off;
-    const uint32_t n = pd_table_encode(t, rev, g_img, (uint32_t)sizeof(g_img));
-    UT_CHECK_UEQ(n, FSW_TABLE_HDR_BYTES + PD_TBL_PAYLOAD);
     for (off = 0u; off < n; off += FSW_TABLE_CHUNK_MAX) {
         fsw_table_chunk_t c;
         c.table_id = (uint16_t)PD_TBL_ID;
@@ -107,6 +109,20 @@ static fsw_rc_t upload(const pd_table_t *t, uint32_t rev, uint32_t *why)
     return rc;
 }
 
+static fsw_rc_t upload(const pd_table_t *t, uint32_t rev, uint32_t *why)
+{
+    const uint32_t n = pd_table_encode(t, rev, g_img, (uint32_t)sizeof(g_img));
+    UT_CHECK_UEQ(n, FSW_TABLE_HDR_BYTES + PD_TBL_PAYLOAD);
+    return upload_img(n, rev, why);
+}
+
+/* Little-endian u32 at byte off of the payload in g_img. */
+static uint32_t pl_u32(uint32_t off)
+{
+    const uint8_t *b = &g_img[FSW_TABLE_HDR_BYTES + off];
+    return (uint32_t)b[0] | ((uint32_t)b[1] << 8) | ((uint32_t)b[2] << 16) | ((uint32_t)b[3] << 24);
+}
+
 static const pd_ch_tlm_t *ch(uint32_t k)
 {
     return &g_oa.tlm.m.hold.ch[k];
@@ -115,7 +131,7 @@ static const pd_ch_tlm_t *ch(uint32_t k)
 /* Yaw y = 640: M = -160 640 = -102 400 -> -400 counts; roll y = 64: -120 64 = -7680 -> -30;
    pitch y = -1280: +204 800 -> +800. The boot table's k2_nom equals k2_cold on every channel
    (FALLBACK_GAIN), and it is the boot table (TABLE_DEFAULT). Telemetry: header 88 + 3 actuator
-   counts 12 + health 4 + block (13 words x 3 channels + revision) 160 = 264 bytes. */
+   counts 12 + health 4 + block (18 words x 3 channels + revision) 220 = 324 bytes. */
 UT_TEST(boots_into_hold_and_commands_each_channel)
 {
     uint8_t buf[PD_TLM_TOTAL_BYTES];
@@ -137,8 +153,8 @@ UT_TEST(boots_into_hold_and_commands_each_channel)
     UT_UEQ(g_oa.tlm.tbl_revision, 3u);
     UT_UEQ(g_oa.tlm.m.hold.revision, 3u);
     UT_UEQ(fsw_tlm_layout(&g_oa.tlm), PD_TLM_LAYOUT);
-    UT_UEQ(PD_TLM_TOTAL_BYTES, 264u);
-    UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, PD_TLM_TOTAL_BYTES), 264u);
+    UT_UEQ(PD_TLM_TOTAL_BYTES, 324u);
+    UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, PD_TLM_TOTAL_BYTES), 324u);
     UT_UEQ(fsw_tlm_encode(&g_oa.tlm, buf, PD_TLM_TOTAL_BYTES - 1u), 0u);
 }
 
@@ -264,10 +280,10 @@ UT_TEST(set_f_and_set_source_select_the_gain_source)
     UT_EQ(g_oa.act_cnt[0], -1680);
     UT_EQ(g_oa.act_cnt[1], -1110);
     UT_EQ(g_oa.act_cnt[2], -3000);
-    /* out-of-range arguments are ignored: SET_SOURCE 2 (ADAPTIVE), SET_F 0.5 Hz */
+    /* out-of-range arguments are ignored: SET_SOURCE 3 (no such source), SET_F 0.5 Hz */
     in = frame(4, 64, 64, 64);
     in.tc = TC(PD_CMD_SET_SOURCE);
-    in.tc_arg[0] = (int32_t)PD_SRC_ADAPTIVE;
+    in.tc_arg[0] = (int32_t)PD_SRC_ADAPTIVE + 1;
     run(&in);
     in = frame(5, 64, 64, 64);
     in.tc = TC(PD_CMD_SET_F);
@@ -360,7 +376,7 @@ UT_TEST(roll_k2_max_above_the_cap_is_vetoed)
     run(&in);
     g_t = PD_TBL_DEFAULT;
     g_t.ch[1].k2_max_q22 = K_Q22(151);
-    UT_UEQ(pd_table_check(&g_t, &why), PD_WHY_CAP);
+    UT_UEQ(pd_table_check(&g_t, &g_chk, &why), PD_WHY_CAP);
     UT_UEQ(why, PD_WHY_CAP);
     UT_UEQ(upload(&g_t, 2u, &why), FSW_ERR_INVARIANT);
     UT_UEQ(why, RW(FSW_TBL_R_MODULE, 7u));
@@ -372,7 +388,7 @@ UT_TEST(roll_k2_max_above_the_cap_is_vetoed)
     UT_EQ(g_oa.act_cnt[1], -300);              /* -120 640 / 256 */
     UT_UEQ(g_oa.tlm.mod_health & PD_H_TABLE_DEFAULT, PD_H_TABLE_DEFAULT);
     g_t.ch[1].k2_max_q22 = K_Q22(150);
-    UT_UEQ(pd_table_check(&g_t, &why), 0u);
+    UT_UEQ(pd_table_check(&g_t, &g_chk, &why), 0u);
     UT_UEQ(upload(&g_t, 3u, &why), FSW_OK);
     in = frame(3, 640, 640, 640);
     run(&in);
@@ -395,7 +411,7 @@ UT_TEST(n_div_2_runs_the_law_every_second_step)
     g_t = PD_TBL_DEFAULT;
     g_t.c.n_div = 2u;
     g_t.c.inv_ty_q22 = 8388608u;
-    UT_UEQ(pd_table_check(&g_t, &why), 0u);
+    UT_UEQ(pd_table_check(&g_t, &g_chk, &why), 0u);
     UT_UEQ(boot(&g_t, 1u), FSW_OK);
     in = frame(1, 0, 0, 6464);
     run(&in);
@@ -538,7 +554,7 @@ UT_TEST(ground_is_refused_for_a_schedule_of_another_law)
     fsw_in_t in;
     g_t = PD_TBL_LITERAL;
     g_t.c.src = (uint8_t)PD_SRC_GROUND;
-    UT_UEQ(pd_table_check(&g_t, NULL), PD_WHY_MODE);
+    UT_UEQ(pd_table_check(&g_t, &g_chk, NULL), PD_WHY_MODE);
     UT_UEQ(boot(&PD_TBL_LITERAL, 1u), FSW_OK);
     in = frame(1, 0, 0, 0);
     in.tc = TC(PD_CMD_SET_F);
@@ -552,6 +568,105 @@ UT_TEST(ground_is_refused_for_a_schedule_of_another_law)
     run(&in);
     UT_UEQ(ch(2)->k2_q22, K_Q22(475));
     UT_UEQ(ch(2)->health & PD_H_SRC, PD_SRC_FIXED << PD_H_SRC_SH);
+}
+
+/* Layout 3 (pd_table.c): 56 common bytes, then per channel 1004 (yaw at 56, roll at 1060, pitch at
+   2064): gains and nodes 100, the estimator block 904 from +100. Yaw's block has n_sec = 2 and n_reg
+   = 2, roll's 1 and 0, pitch's 1 and 2 (tools/pd/fest); in the pitch block inv_m at +104, ad_m[0][1]
+   at +132, dad_sh[1][0] at +368, aa_a_q29[1] at +428, cinv_q30[12][10] at +432 + 4 (12 11 + 10) =
+   +1000, the payload's last word (2064 + 1000 = 3064). Decoding and encoding again gives the image
+   back byte for byte. */
+UT_TEST(the_estimator_blocks_are_on_the_wire_at_their_offsets)
+{
+    const pd_fest_params_t *f = &PD_TBL_DEFAULT.ch[2].fest;
+    uint32_t n = pd_table_encode(&PD_TBL_DEFAULT, 4u, g_img, (uint32_t)sizeof(g_img));
+    uint32_t i;
+    UT_UEQ(n, 3084u);
+    UT_UEQ(PD_TBL_PAYLOAD, 3068u);
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 156u], 2u);     /* yaw n_sec, n_reg, reserved */
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 157u], 2u);
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 158u], 0u);
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 159u], 0u);
+    UT_UEQ(pl_u32(1060u), PD_TBL_DEFAULT.ch[1].k0_q22);  /* roll's record */
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 1160u], 1u);
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 1161u], 0u);
+    UT_UEQ(pl_u32(2064u), PD_TBL_DEFAULT.ch[2].k0_q22);  /* pitch's record */
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 2164u], 1u);
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 2165u], 2u);
+    UT_UEQ(pl_u32(2168u), f->inv_m_q30);
+    UT_UEQ(pl_u32(2196u), (uint32_t)f->ad_m[0][1]);
+    UT_UEQ(g_img[FSW_TABLE_HDR_BYTES + 2432u], f->dad_sh[1][0]);
+    UT_UEQ(pl_u32(2492u), (uint32_t)f->aa_a_q29[1]);
+    UT_UEQ(pl_u32(3064u), f->cinv_q30[12][10]);
+    UT_UEQ(pd_table_decode(&g_img[FSW_TABLE_HDR_BYTES], PD_TBL_PAYLOAD, 4u, &g_t), FSW_OK);
+    UT_UEQ(g_t.ch[0].fest.n_sec, 2u);
+    UT_EQ(g_t.ch[2].fest.ad_m[0][1], f->ad_m[0][1]);
+    UT_UEQ(g_t.ch[2].fest.cinv_q30[12][10], f->cinv_q30[12][10]);
+    UT_UEQ(pd_table_encode(&g_t, 4u, g_img2, (uint32_t)sizeof(g_img2)), n);
+    for (i = 0u; i < n; i++) {
+        if (g_img2[i] != g_img[i]) {
+            UT_UEQ(i, n);   /* names the first byte that differs */
+            break;
+        }
+    }
+}
+
+/* A reserved byte of an estimator block that is not 0 makes the payload undecodable (FSW_ERR_DECODE),
+   even with a valid CRC: the module check vetoes the upload as undecodable (detail 0xFF) and the
+   boot table stays. Pitch reserved0 at 2166, then yaw reserved1 at 159. */
+UT_TEST(an_estimator_reserved_byte_not_zero_is_refused)
+{
+    fsw_in_t in;
+    uint32_t why = 0u;
+    uint32_t n;
+    UT_UEQ(boot(&PD_TBL_DEFAULT, 1u), FSW_OK);
+    in = frame(1, 0, 0, 0);
+    run(&in);
+    n = pd_table_encode(&PD_TBL_DEFAULT, 2u, g_img, (uint32_t)sizeof(g_img));
+    UT_UEQ(n, FSW_TABLE_HDR_BYTES + PD_TBL_PAYLOAD);
+    g_img[FSW_TABLE_HDR_BYTES + 2166u] = 1u;
+    fsw_table_write_header(g_img, (uint16_t)PD_TBL_ID, (uint16_t)PD_TBL_LAYOUT, PD_TBL_PAYLOAD, 2u);
+    UT_UEQ(pd_table_decode(&g_img[FSW_TABLE_HDR_BYTES], PD_TBL_PAYLOAD, 2u, &g_t), FSW_ERR_DECODE);
+    UT_UEQ(upload_img(n, 2u, &why), FSW_ERR_INVARIANT);
+    UT_UEQ(why, RW(FSW_TBL_R_MODULE, FSW_VETO_UNDECODED));
+    in = frame(2, 0, 0, 0);
+    run(&in);
+    UT_UEQ(g_oa.tlm.n_tbl_rej, 1u);
+    UT_UEQ(g_oa.tlm.tbl_revision, 1u);
+    g_img[FSW_TABLE_HDR_BYTES + 2166u] = 0u;
+    g_img[FSW_TABLE_HDR_BYTES + 159u] = 0x80u;
+    fsw_table_write_header(g_img, (uint16_t)PD_TBL_ID, (uint16_t)PD_TBL_LAYOUT, PD_TBL_PAYLOAD, 3u);
+    UT_UEQ(pd_table_decode(&g_img[FSW_TABLE_HDR_BYTES], PD_TBL_PAYLOAD, 3u, &g_t), FSW_ERR_DECODE);
+    g_img[FSW_TABLE_HDR_BYTES + 159u] = 0u;
+    UT_UEQ(pd_table_decode(&g_img[FSW_TABLE_HDR_BYTES], PD_TBL_PAYLOAD, 3u, &g_t), FSW_OK);
+}
+
+/* The loader's limits on the blocks (PD_LIMS): n_sec in [1, 2], n_reg in [0, 2]; descriptor indices
+   20 common fields, then per channel 6 gains, n_sec, n_reg: yaw n_sec 26, roll n_sec 34, pitch n_reg
+   43. Each is refused by the loader (RANGE_LO / RANGE_HI naming the field), before the module check. */
+UT_TEST(estimator_n_sec_and_n_reg_are_range_checked_by_the_loader)
+{
+    fsw_in_t in;
+    uint32_t why = 0u;
+    UT_UEQ(boot(&PD_TBL_DEFAULT, 1u), FSW_OK);
+    in = frame(1, 0, 0, 0);
+    run(&in);
+    g_t = PD_TBL_DEFAULT;
+    g_t.ch[1].fest.n_sec = 0u;
+    UT_UEQ(upload(&g_t, 2u, &why), FSW_ERR_RANGE);
+    UT_UEQ(why, RW(FSW_TBL_R_RANGE_LO, 34u));
+    g_t = PD_TBL_DEFAULT;
+    g_t.ch[0].fest.n_sec = 3u;
+    UT_UEQ(upload(&g_t, 3u, &why), FSW_ERR_RANGE);
+    UT_UEQ(why, RW(FSW_TBL_R_RANGE_HI, 26u));
+    g_t = PD_TBL_DEFAULT;
+    g_t.ch[2].fest.n_reg = 3u;
+    UT_UEQ(upload(&g_t, 4u, &why), FSW_ERR_RANGE);
+    UT_UEQ(why, RW(FSW_TBL_R_RANGE_HI, 43u));
+    in = frame(2, 0, 0, 0);
+    run(&in);
+    UT_UEQ(g_oa.tlm.n_tbl_rej, 3u);
+    UT_UEQ(g_oa.tlm.tbl_revision, 1u);
 }
 
 int main(void)
@@ -571,6 +686,9 @@ int main(void)
         UT_CASE(a_lost_frame_is_missing_and_differenced_across),
         UT_CASE(n_div_2_a_lost_sample_frame_keeps_the_sample_phase),
         UT_CASE(ground_is_refused_for_a_schedule_of_another_law),
+        UT_CASE(the_estimator_blocks_are_on_the_wire_at_their_offsets),
+        UT_CASE(an_estimator_reserved_byte_not_zero_is_refused),
+        UT_CASE(estimator_n_sec_and_n_reg_are_range_checked_by_the_loader),
     };
     return UT_RUN("pd_mission", cases);
 }

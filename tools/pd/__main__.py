@@ -1,4 +1,4 @@
-"""python -m tools.pd {ctable [--check] | schedule --analysis BIN [--check] | image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE
+"""python -m tools.pd {ctable [--check] | schedule --analysis BIN [--check] | fest --analysis BIN [--check] | image (--table NAME [--revision N] [--set FIELD=INT ...] -o FILE
    | --all DIR)} (from the repo root)."""
 import argparse
 import sys
@@ -12,6 +12,9 @@ def main(argv=None):
     sc = sub.add_parser("schedule", help="write (or --check) tools/pd/schedule/*.json with pd_analysis synth")
     sc.add_argument("--analysis", required=True, help="the pd_analysis executable")
     sc.add_argument("--check", action="store_true")
+    fe = sub.add_parser("fest", help="write (or --check) tools/pd/fest/*.json with pd_analysis fest-params")
+    fe.add_argument("--analysis", required=True, help="the pd_analysis executable")
+    fe.add_argument("--check", action="store_true")
     im = sub.add_parser("image", help="write binary table images (header + payload) of the boot tables")
     im.add_argument("--table", help="boot table name (design.TABLES)")
     im.add_argument("--all", metavar="DIR", help="write DIR/<name>.bin for every boot table")
@@ -25,6 +28,9 @@ def main(argv=None):
     if a.cmd == "schedule":
         from . import schedule
         return schedule.main(a.analysis, a.check)
+    if a.cmd == "fest":
+        from . import fest
+        return fest.main(a.analysis, a.check)
     from . import image
     return image.main(a)
 

@@ -8,10 +8,17 @@ compares). Every k2 is uq22 (k2 * 2^22, rounded half away from zero), f uq32 Hz,
 
 Change DESIGN / CHANNELS (or add a table to TABLES) and run `python -m tools.pd ctable` to rewrite the
 C boot tables; CTest golden_pd_tables_regen fails while they disagree.
+
+Estimator blocks: tools/pd/fest/<channel>.json (each channel's pd_fest_params_t, already integers),
+written by `python -m tools.pd fest` (pd_analysis fest-params: the double design on the channel's
+nominal model through sim/pd/pd_fest_quant; CTest golden_pd_fest_regen re-runs it and compares). Every
+channel carries its block; yaw's (n_sec 2) is refused by pd_fest_check, so yaw cannot fly ADAPTIVE.
 """
 import json
 import math
 import os
+
+from . import fest as _fest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHANNELS = ("yaw", "roll", "pitch")
@@ -23,7 +30,7 @@ DESIGN = dict(
     period_s=0.25,          # Ty = n_div period: the attitude sample (spec 40 §2.4)
     n_div=1,
     law="fast",             # PD_LAW_FAST, the shipped law (§3.2)
-    src="fixed",            # at boot: k2_nom; SET_SOURCE / SET_F select GROUND (no estimator yet)
+    src="fixed",            # at boot: k2_nom; SET_SOURCE / SET_F select GROUND or ADAPTIVE (pd_adaptive: from boot)
     sched="fast",           # the law the schedule was synthesised for
     ch_mask=7,
     n_y=16,                 # T0 = 4 s
@@ -51,7 +58,10 @@ CHANNELS_DESIGN = {
 # (name in scenarios and tools, C symbol, overrides of DESIGN)
 TABLES = [("pd_default", "PD_TBL_DEFAULT", {}),
           ("pd_literal", "PD_TBL_LITERAL", {"law": "literal"}),
-          ("pd_avgp", "PD_TBL_AVGP", {"law": "fast_avgp"})]
+          ("pd_avgp", "PD_TBL_AVGP", {"law": "fast_avgp"}),
+          # ADAPTIVE from boot on roll and pitch; yaw's estimator (two sections) is not ported, so yaw
+          # does not fly in this table (ch_mask 6; pd_table_check exempts masked channels)
+          ("pd_adaptive", "PD_TBL_ADAPTIVE", {"src": "adaptive", "ch_mask": 6})]
 
 
 def rnd(v):
@@ -101,6 +111,7 @@ def params(d):
         chans.append({"k0_q22": q(g["k0"]), "k1_q22": q(g["k1"]), "k2_nom_q22": q(s["k2_cold"]),
                       "k2_cold_q22": q(s["k2_cold"]), "k2_min_q22": q(g["k2_min"]), "k2_max_q22": q(g["k2_max"]),
                       "k2_node_q22": [q(n["k2"]) for n in s["nodes"]],
+                      "fest": _fest.load(ch),
                       "_nodes": s["nodes"]})
     return c, chans
 
@@ -110,11 +121,18 @@ def table(name):
 
 
 def flat(name):
-    """Every raw field by its wire name (channel fields prefixed yaw_ / roll_ / pitch_)."""
+    """Every raw field by its wire name (channel fields prefixed yaw_ / roll_ / pitch_; the estimator
+    block's prefixed <channel>_fest_, its matrices flattened row-major, with the two reserved bytes the
+    wire carries after n_reg)."""
     c, chans = table(name)
     out = dict(c)
     for ch, g in zip(CHANNELS, chans):
         for k, v in g.items():
-            if not k.startswith("_"):
+            if k == "fest":
+                for f, fv in v.items():
+                    out["%s_fest_%s" % (ch, f)] = _fest.flatten(fv)
+                out["%s_fest_reserved0" % ch] = 0
+                out["%s_fest_reserved1" % ch] = 0
+            elif not k.startswith("_"):
                 out["%s_%s" % (ch, k)] = v
     return out

@@ -11,6 +11,9 @@
 //                    [--h-scale S] [--latency 1] [--f-step] [--warm] [--schedule FILE]
 //                                                                       §4.4 A estimator (sim/pd/pd_fest_ref)
 //                                                                       in the adaptive closed loop (§4.2)
+//   pd_analysis fest-params --channel C                                 the channel's estimator table block:
+//                                                                       make_fest_params on the nominal model,
+//                                                                       quantised (sim/pd/pd_fest_quant), JSON
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -25,6 +28,7 @@
 #include <vector>
 
 #include "fsw_cli.hpp"
+#include "pd/pd_fest_quant.hpp"
 #include "pd/pd_fest_ref.hpp"
 #include "pd/pd_model.hpp"
 
@@ -368,6 +372,17 @@ int cmd_fest(const FestCase &c)
     return 0;
 }
 
+// The estimator block of the channel's table (fsw/pd/pd_fest.h) as tools/pd commits it
+// (tools/pd/fest/<channel>.json): the double design on the nominal model, through the one quantiser
+// the golden tests use too. Yaw's block (n_sec 2) is printed like the others: the table carries it,
+// pd_fest_check refuses it.
+int cmd_fest_params(const std::string &chan)
+{
+    const pd_fest_params_t q = quantise_fest(make_fest_params(Channel::by_name(chan)));
+    std::printf("%s\n", fest_params_json(q).c_str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -416,6 +431,10 @@ int main(int argc, char **argv)
     fe->add_flag("--warm", fc.warm, "GROUND start at sched(f) instead of k2_cold");
     fe->add_option("--schedule", fc.schedule, "schedule JSON (default tools/pd/schedule/<channel>_fast.json)");
 
+    std::string fp_chan;
+    CLI::App *fp = app.add_subcommand("fest-params", "the channel's estimator table block, quantised, as JSON");
+    fp->add_option("--channel", fp_chan)->required()->check(CLI::IsMember(channels));
+
     const int st = fsw_cli::parse(app, argc, argv, 2);
     if (st >= 0) {
         return st;
@@ -435,6 +454,9 @@ int main(int argc, char **argv)
         }
         if (fe->parsed()) {
             return cmd_fest(fc);
+        }
+        if (fp->parsed()) {
+            return cmd_fest_params(fp_chan);
         }
     } catch (const std::exception &e) {
         std::fprintf(stderr, "pd_analysis: %s\n", e.what());

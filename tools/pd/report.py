@@ -9,7 +9,10 @@ sample instants (spec 40 §2.6: the first sample after the last one with |x| >= 
 violates the band), the peak commanded torque, the peak |dy|/Ty from the telemetry, the peak |beta|
 (truth), the peak |x| after 600 s, the final k2 and its number of changes, the OR of the channel's health.
 Plots: DIR/attitude.png (|x| per channel on a log scale with the band), DIR/torque.png (M commands),
-DIR/gimbal.png (beta truth), DIR/k2.png (k2 in use, telemetry).
+DIR/gimbal.png (beta truth), DIR/k2.png (k2 in use, telemetry); for a channel flying ADAPTIVE (its
+estimator's published f_hat is non-zero) also f_hat at 300 s and 1 200 s with the estimator state there
+and its FAULT count (log-derived only: the live summary has no estimator figures), and DIR/fest.png
+(f_hat(t), the confident periods marked, the true f_min of the scenario when the log has it).
 """
 import os
 
@@ -21,6 +24,7 @@ CH = ("yaw", "roll", "pitch")
 TORQUE_LSB_NM = 2.0 ** -20     # actuator channels 0..2 (fsw/pd/pd_iface.py)
 BAND_RAD = 5e-5                # PdMetrics::kBandRad
 LATE_S = 600.0                 # PdMetrics::kLateS
+FEST_STATES = ("ACQUIRE", "TRACK", "HOLD", "FAULT")
 # PdPlant truth layout (sim/pd/pd_plant.hpp): state[0..2] x, state[3..5] beta, state[13] linear_validity
 TX, TB, TLIN = 0, 3, 13
 
@@ -79,6 +83,17 @@ def metrics(R, mission, m):
             m["pd_%s_flags_seen" % c] = [b.name for b in mission.iface.health if b.single and h & b.mask]
             for n in ("miss", "stale", "range_rej", "rate_rej", "period_rej", "trq_sat", "beta_lim"):
                 m["fsw"]["pd_%s_%s" % (c, n)] = int(raw["pd_%s_%s" % (c, n)][-1])
+            ff = raw["pd_%s_fest_f" % c].astype(np.int64)
+            if np.any(ff != 0):
+                tt = L["utime"] * 1e-6
+                word = raw["pd_%s_fest" % c].astype(np.int64)
+                for at in (300.0, 1200.0):
+                    i = int(np.searchsorted(tt, at + 1e-6)) - 1
+                    if i >= 0:
+                        m["fest_f%d_%s_hz" % (int(at), c)] = float(ff[i]) * 2.0 ** -32
+                        m["fest_state%d_%s" % (int(at), c)] = FEST_STATES[int(word[i]) & 3] + (
+                            " confident" if word[i] & 4 else "")
+                m["fest_resets_%s" % c] = int(raw["pd_%s_fest_resets" % c][-1])
     m["linear_invalid"] = int(bool(len(T)) and bool(np.any(T[:, 1 + TLIN] < 0.5)))
     return m
 
@@ -98,6 +113,10 @@ def format_summary(m, src):
                      "beta_lim %d" % (m["pd_%s_health_or" % c], " ".join(m["pd_%s_flags_seen" % c]) or "(no flag)",
                                       *[f["pd_%s_%s" % (c, n)] for n in ("miss", "stale", "range_rej", "rate_rej",
                                                                           "period_rej", "trq_sat", "beta_lim")]))
+        if "fest_resets_%s" % c in m:
+            o.append("         estimator: f^(300 s) %.5f Hz %s, f^(1200 s) %.5f Hz %s, FAULTs %d" % (
+                m.get("fest_f300_%s_hz" % c, 0.0), m.get("fest_state300_%s" % c, "-"),
+                m.get("fest_f1200_%s_hz" % c, 0.0), m.get("fest_state1200_%s" % c, "-"), m["fest_resets_%s" % c]))
     o.append("  linear model      %s" % ("strained (|beta| > 0.5 rad seen)" if m["linear_invalid"] else "valid"))
     return "\n".join(o) + "\n"
 
@@ -165,4 +184,26 @@ def plots(R, m, out):
         fig.savefig(p, dpi=110)
         plt.close(fig)
         paths.append(p)
+        adaptive = [c for c in CH if np.any(L["raw"]["pd_%s_fest_f" % c] != 0)]
+        if adaptive:
+            tt = L["utime"] * 1e-6
+            fig, ax = plt.subplots(figsize=(10, 3.5))
+            for c in adaptive:
+                f = L["raw"]["pd_%s_fest_f" % c] * 2.0 ** -32
+                conf = (L["raw"]["pd_%s_fest" % c].astype(np.int64) & 4) != 0
+                ax.plot(tt, f, lw=0.9, label="f^ %s" % c)
+                ax.plot(tt[conf], f[conf], ".", ms=2, label="f^ %s confident" % c)
+            f_true = m.get("f_hz")
+            if f_true:
+                ax.axhline(f_true, color="k", ls="--", lw=0.8, label="f_min (scenario)")
+            ax.set_xlabel("time [s]")
+            ax.set_ylabel("estimated f_min [Hz]")
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=8)
+            ax.set_title("HOLD: on-board frequency estimate (ADAPTIVE channels)")
+            fig.tight_layout()
+            p = os.path.join(out, "fest.png")
+            fig.savefig(p, dpi=110)
+            plt.close(fig)
+            paths.append(p)
     return paths
