@@ -71,6 +71,7 @@
 #define PD_B_BLOCK      64u           /* FIXED half: the fault pattern repeats every 4 periods */
 #define PD_B_RETUNE_PER 16u           /* GROUND half: a new f every 16 samples */
 #define PD_B_AVG_N      1024u         /* LITERAL, FAST_AVGP: 64 control periods of 16 */
+#define PD_B_AD_N       1024u         /* ADAPTIVE: 64 control periods of 16 */
 #define PD_B_MIS_N      512u          /* mission steps */
 #define PD_B_SCHED_N    256u          /* pd_sched_k2 grid intervals over [0, 0.2] Hz */
 #define PD_B_EVERY      3u            /* ordinary samples measured: one in 3 */
@@ -255,6 +256,9 @@ static void pdb_put_classes(void)
     board_console_write("class mis_ordinary pd_mis_step, three valid channels (FAST boot table), no telecommand (every 2nd)\n");
     board_console_write("class mis_gap pd_mis_step after G lost frames (seq jumped by G + 1): pd_note_gap on each channel, then the sample (sub: G)\n");
     board_console_write("class sched_k2 pd_sched_k2 alone, pitch, f on a uniform grid over [0, 0.2] Hz\n");
+    board_console_write("class ad_sample ADAPTIVE (pd_adaptive, pitch) valid sample inside a Td block: law + estimator predictor, regressors, noise, anti-alias (every 3rd; sub: estimator state)\n");
+    board_console_write("class ad_td ADAPTIVE 4th sample of a Td block, not a period end: + high-pass, gate, notch and RLS, theta RLS, frequency (sub: estimator state)\n");
+    board_console_write("class ad_period ADAPTIVE 16th sample: + the estimator's period logic and the re-tune rule (sub: estimator state after it)\n");
 }
 
 /* bracket1, twin and wrapper of kind kd: the instructions of one call (the wrapper leaves the state
@@ -509,6 +513,51 @@ static void run_avg(const pd_table_t *tbl, const char *name)
     }
 }
 
+/* ADAPTIVE on the pitch channel of PD_TBL_ADAPTIVE, the FAST input pattern without faults. The input is
+   synthetic and open loop (not the plant's response to the torque), so the estimator's states are not
+   those of a flight; its arithmetic per sample does not depend on the data except in the FAULT / reset
+   branches, which the sub-class (the state) separates. Class by the estimator's phase. */
+static const char *ad_state(void)
+{
+    static const char *const names[4] = { "ACQUIRE", "TRACK", "HOLD", "FAULT" };
+    return names[s_swork.fest.state & 3u];
+}
+
+static void run_adaptive(void)
+{
+    uint32_t n_ord = 0u;
+    uint32_t k;
+    load_params(&PD_TBL_ADAPTIVE, "table_refused_adaptive");
+    if (s_slive.src != (uint8_t)PD_SRC_ADAPTIVE) {
+        pdb_put_err("adaptive_not_selected", 0u, s_slive.src);
+    }
+    for (k = 0u; k < PD_B_AD_N; k++) {
+        const char *cls;
+        bool measured;
+        make_input(k, PD_B_EV_ORD);
+        bk_pd_step(k);   /* classify: s_swork = the step from s_slive */
+        if (s_swork.fest.period_end) {
+            cls = "ad_period";
+            measured = true;
+        } else if (s_swork.fest.blk_n == 0u) {
+            cls = "ad_td";
+            measured = true;
+        } else {
+            cls = "ad_sample";
+            n_ord++;
+            measured = (n_ord % PD_B_EVERY) == 1u;
+        }
+        if (measured) {
+            pdb_put_sample(cls, ad_state(), measure(bk_pd_step, bn_pd_step, PD_B_K_STEP, k), k);
+        }
+        s_slive = s_swork;
+    }
+    pdb_put_sum("ad_samples", PD_B_AD_N);
+    pdb_put_sum("ad_fest_resets", s_slive.fest.resets);
+    pdb_put_sum("ad_fest_state", (uint32_t)s_slive.fest.state);
+    pdb_put_sum("ad_k2_q22", s_slive.k2_q22);
+}
+
 /* The mission block: the boot table encoded, checked, loaded and entered. */
 static void mis_setup(void)
 {
@@ -642,6 +691,7 @@ int main(void)
     run_fast();
     run_avg(&PD_TBL_LITERAL, "table_refused_literal");
     run_avg(&PD_TBL_AVGP, "table_refused_avgp");
+    run_adaptive();
     run_mis();
     run_mis_gap();
     run_sched();
