@@ -296,6 +296,108 @@ SIM_TEST(a3_5_adaptive_pitch_cold_start)
     }
 }
 
+// A3-6 for roll (SIL, reduced: two nodes, one seed; yaw cannot fly ADAPTIVE, fsw/pd/pd_fest.h): roll
+// displaced by 0.017 rad, SET_SOURCE ADAPTIVE at t = 0, against the same run at constant k2_cold (the
+// boot FIXED gain, 135 s). R3 (5 % at 300 s, 10 % at 1 200 s), no confident f^ > 1.1 f, and
+// t* <= t*(k2_cold) + 10 s where the constant run settles.
+SIM_TEST(a3_6_adaptive_roll)
+{
+    for (double f : {0.03, 0.10}) {
+        sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+        body(s).f_hz = f;
+        body(s).x0_rad = {{0.0, 0.017, 0.0}};
+        const sil::InprocResult cold = fly(s, "fixed");
+        command(s, PD_CMD_SET_SOURCE, static_cast<std::int32_t>(PD_SRC_ADAPTIVE));
+        const sil::InprocResult r = fly(s, "fixed");
+        common_checks(r);
+        const double f300 = mm(r).fest_f_at(1, 300.0), f1200 = mm(r).fest_f_at(1, 1200.0);
+        const double tc = mm(cold).t_settle(1), t = mm(r).t_settle(1);
+        std::printf("A3-6 SIL adaptive roll f %.2f Hz: f^(300) %+.4f, f^(1200) %+.4f, max confident f^/f %.4f, t* %.2f s "
+                    "(k2_cold constant %.2f s), k2 final %.2f s, FAULTs %u\n",
+                    f, f300 / f - 1.0, f1200 / f - 1.0, mm(r).fest_max_confident(1) / f, t, tc, mm(r).k2_final[1],
+                    mm(r).fest_resets[1]);
+        EXPECT_LE(std::fabs(f300 / f - 1.0), 0.05);
+        EXPECT_LE(std::fabs(f1200 / f - 1.0), 0.10);
+        EXPECT_LE(mm(r).fest_max_confident(1), 1.1 * f);
+        if (tc > 0.0) {
+            EXPECT_TRUE(t > 0.0);
+            EXPECT_LE(t, tc + 10.0);
+        }
+    }
+}
+
+// A3-9 (SIL, reduced: pitch at 0.03 Hz; measured and reported, only R5 gates): true coupling x0.8 and
+// x1.25, Ix and H x0.9 and x1.1, one sample of extra latency; and the frequency step 0.05 -> 0.02 Hz at
+// 1 200 s with a new 0.017-rad disturbance at 1 300 s (re-tune time and the second t* reported; R5 and
+// the FAULT on the kick asserted).
+SIM_TEST(a3_9_adaptive_pitch_robustness)
+{
+    struct Var {
+        const char *name;
+        double coupling, ix, h;
+        std::uint32_t latency;
+    };
+    const Var vars[] = {{"coupling x0.8", 0.8, 1.0, 1.0, 0u}, {"coupling x1.25", 1.25, 1.0, 1.0, 0u},
+                        {"Ix x0.9", 1.0, 0.9, 1.0, 0u},       {"Ix x1.1", 1.0, 1.1, 1.0, 0u},
+                        {"H x0.9", 1.0, 1.0, 0.9, 0u},        {"H x1.1", 1.0, 1.0, 1.1, 0u},
+                        {"latency 1", 1.0, 1.0, 1.0, 1u}};
+    const double f = 0.03;
+    for (const Var &v : vars) {
+        sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+        body(s).f_hz = f;
+        body(s).scale_coupling = v.coupling;
+        body(s).scale_ix = v.ix;
+        body(s).scale_h = v.h;
+        body(s).latency_samples = v.latency;
+        command(s, PD_CMD_SET_SOURCE, static_cast<std::int32_t>(PD_SRC_ADAPTIVE));
+        const sil::InprocResult r = fly(s, "fixed");
+        common_checks(r);
+        std::printf("A3-9 SIL adaptive pitch f %.2f Hz %-14s: f^(300) %+.4f, f^(1200) %+.4f, max confident f^/f %.4f, "
+                    "t* %.2f s, k2 final %.2f s, FAULTs %u\n",
+                    f, v.name, mm(r).fest_f_at(2, 300.0) / f - 1.0, mm(r).fest_f_at(2, 1200.0) / f - 1.0,
+                    mm(r).fest_max_confident(2) / f, mm(r).t_settle(2), mm(r).k2_final[2], mm(r).fest_resets[2]);
+        EXPECT_LE(mm(r).fest_max_confident(2), 1.1 * f);   // R5
+    }
+    sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+    s.duration_s = 2400.0;
+    body(s).f_hz = 0.05;
+    body(s).f_steps = {sim::PdFStep{1200.0, 0.02}};
+    sim::PdKick kick;
+    kick.t_s = 1300.0;
+    kick.dx_rad = {{0.0, 0.0, 0.017}};
+    body(s).kicks = {kick};
+    command(s, PD_CMD_SET_SOURCE, static_cast<std::int32_t>(PD_SRC_ADAPTIVE));
+    const sil::InprocResult r = fly(s, "fixed");
+    common_checks(r);
+    const host::PdMetrics &m = mm(r);
+    double t_retune = -1.0, max_conf_ratio = 0.0;
+    for (std::size_t i = 1; i < m.t_tlm.size(); ++i) {
+        const double ft = m.t_tlm[i] < 1200.0 ? 0.05 : 0.02;
+        if ((m.fest_word[2][i] & 4u) != 0u) { max_conf_ratio = std::fmax(max_conf_ratio, m.fest_f[2][i] / ft); }
+        if (m.t_tlm[i] > 1300.0 && std::fabs(m.k2_series[2][i] - m.k2_series[2][i - 1]) > 0.0) { t_retune = m.t_tlm[i]; }
+    }
+    std::vector<double> after;
+    for (std::size_t i = 0; i < m.t.size(); ++i) {
+        if (m.t[i] >= 1300.0) { after.push_back(m.x[2][i]); }
+    }
+    double t2 = -1.0;
+    if (!after.empty() && std::fabs(after.back()) < host::PdMetrics::kBandRad) {
+        t2 = 0.0;
+        for (std::size_t i = after.size(); i-- > 0;) {
+            if (!(std::fabs(after[i]) < host::PdMetrics::kBandRad)) {
+                t2 = static_cast<double>(i + 1) * m.ty_s;
+                break;
+            }
+        }
+    }
+    std::printf("A3-9 SIL frequency step 0.05 -> 0.02 Hz at 1200 s, kick at 1300 s: FAULTs %u, last re-tune at %.2f s "
+                "(%.2f s after the kick), k2 final %.2f s, second t* %.2f s, max confident f^/f %.4f\n",
+                m.fest_resets[2], t_retune, t_retune - 1300.0, m.k2_final[2], t2, max_conf_ratio);
+    EXPECT_TRUE(m.fest_resets[2] >= 1u);   // the kick is an unmodelled jump: RESID
+    EXPECT_LE(max_conf_ratio, 1.1);        // R5
+    EXPECT_TRUE(t2 > 0.0);
+}
+
 SIM_TEST(runs_are_bit_identical)
 {
     sil::InprocOptions o;
@@ -315,6 +417,8 @@ int main()
         cmocka_unit_test(a3_10_sensor_faults_are_counted_and_flown_through),
         cmocka_unit_test(a3_10_five_percent_frame_loss_keeps_t_star),
         cmocka_unit_test(a3_5_adaptive_pitch_cold_start),
+        cmocka_unit_test(a3_6_adaptive_roll),
+        cmocka_unit_test(a3_9_adaptive_pitch_robustness),
         cmocka_unit_test(runs_are_bit_identical)};
     return cmocka_run_group_tests_name("pd_sil", tests, nullptr, nullptr);
 }

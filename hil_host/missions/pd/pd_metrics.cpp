@@ -23,6 +23,9 @@ PdMetrics::PdMetrics(const sim::Scenario &s)
         i_health_[k] = l.at(c + "_health");
         i_k2_[k] = l.at(c + "_k2");
         i_dy_[k] = l.at(c + "_dy");
+        i_ff_[k] = l.at(c + "_fest_f");
+        i_fw_[k] = l.at(c + "_fest");
+        i_fr_[k] = l.at(c + "_fest_resets");
     }
     ty_s = s.h_s();
 }
@@ -47,18 +50,39 @@ void PdMetrics::on_cmd(const gnc::actuator_cmd_v2_t &c)
     }
 }
 
-void PdMetrics::on_tlm(const std::vector<std::int64_t> &v, double)
+void PdMetrics::on_tlm(const std::vector<std::int64_t> &v, double t_s)
 {
+    t_tlm.push_back(t_s);
     for (std::size_t k = 0; k < 3; ++k) {
+        fest_f[k].push_back(std::ldexp(static_cast<double>(v[i_ff_[k]]), -32));
+        fest_word[k].push_back(static_cast<std::uint32_t>(v[i_fw_[k]]));
+        fest_resets[k] = static_cast<std::uint32_t>(v[i_fr_[k]]);
         health_or[k] |= static_cast<std::uint32_t>(v[i_health_[k]]);
         const auto k2 = static_cast<std::uint32_t>(v[i_k2_[k]]);
         if (have_tlm_ && k2 != k2_last_[k]) { ++k2_changes[k]; }
         k2_last_[k] = k2;
         k2_final[k] = std::ldexp(static_cast<double>(k2), -22);
+        k2_series[k].push_back(k2_final[k]);
         peak_rate[k] = std::fmax(peak_rate[k], std::fabs(std::ldexp(static_cast<double>(v[i_dy_[k]]), -30)) / ty_s);
     }
     have_tlm_ = true;
     last_ = v;
+}
+
+double PdMetrics::fest_f_at(std::size_t k, double t_s) const
+{
+    double f = -1.0;
+    for (std::size_t i = 0; i < t_tlm.size() && t_tlm[i] <= t_s + 1e-6; ++i) { f = fest_f[k][i]; }
+    return f;
+}
+
+double PdMetrics::fest_max_confident(std::size_t k) const
+{
+    double f = 0.0;
+    for (std::size_t i = 0; i < fest_f[k].size(); ++i) {
+        if ((fest_word[k][i] & 4u) != 0u) { f = std::fmax(f, fest_f[k][i]); }
+    }
+    return f;
 }
 
 double PdMetrics::t_settle(std::size_t k) const

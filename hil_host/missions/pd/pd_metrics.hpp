@@ -34,10 +34,20 @@ public:
     std::array<double, 3> k2_final{};                 // s
     std::array<std::uint32_t, 3> k2_changes{}, health_or{};
     bool lin_invalid = false;                         // any sample with |beta| > 0.5 rad
+    // The estimator's telemetry per frame (tests only, not in the summary): published f_hat [Hz] (0
+    // while the channel is not ADAPTIVE), the fest word (state bits 0..1, confident bit 2), FAULT count.
+    std::vector<double> t_tlm;                        // frame time [s]
+    std::array<std::vector<double>, 3> fest_f;
+    std::array<std::vector<std::uint32_t>, 3> fest_word;
+    std::array<std::uint32_t, 3> fest_resets{};
+    std::array<std::vector<double>, 3> k2_series;     // k2 in use per frame [s]
+    // f_hat of the last frame at or before t_s (-1 if none); the largest confident f_hat (0 if none)
+    double fest_f_at(std::size_t k, double t_s) const;
+    double fest_max_confident(std::size_t k) const;
     double ty_s = 0.25;
 
 private:
-    std::array<std::size_t, 3> i_health_{}, i_k2_{}, i_dy_{};
+    std::array<std::size_t, 3> i_health_{}, i_k2_{}, i_dy_{}, i_ff_{}, i_fw_{}, i_fr_{};
     std::array<std::uint32_t, 3> k2_last_{};
     bool have_tlm_ = false;
     std::vector<std::int64_t> last_;
