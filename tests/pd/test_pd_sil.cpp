@@ -398,6 +398,39 @@ SIM_TEST(a3_9_adaptive_pitch_robustness)
     EXPECT_TRUE(t2 > 0.0);
 }
 
+// A3-7's adaptive part (reduced: 0.03 Hz, both coupling signs): the coupled three-channel plant, all
+// channels displaced, SET_SOURCE ADAPTIVE at t = 0 (pitch and roll adapt, yaw stays FIXED at k2_cold):
+// pitch meets A3-5 (t* <= 0.55 x 340 s), roll A3-6 (t* <= t*(k2_cold) + 10 s on the same coupled plant,
+// R3 at 300 s, no confident f^ > 1.1 f), and no FAULT.
+SIM_TEST(a3_7_adaptive_on_the_coupled_plant)
+{
+    const double f = 0.03;
+    for (int sign : {1, -1}) {
+        sim::Scenario s = sim::load_scenario(SCENARIO_DIR "/pd_nominal.yaml");
+        body(s).f_hz = f;
+        body(s).x0_rad = {{0.017, 0.017, 0.017}};
+        body(s).kind = sim::PdPlantKind::Coupled;
+        body(s).coupling_sign = sign;
+        const sil::InprocResult cold = fly(s, "fixed");
+        command(s, PD_CMD_SET_SOURCE, static_cast<std::int32_t>(PD_SRC_ADAPTIVE));
+        const sil::InprocResult r = fly(s, "fixed");
+        common_checks(r);
+        std::printf("A3-7 adaptive coupled sign %+d f %.2f Hz: pitch t* %.2f s, f^(300) %+.4f, k2 %.2f s; roll t* %.2f s "
+                    "(k2_cold %.2f s), f^(300) %+.4f; yaw t* %.2f s (k2_cold %.2f s); FAULTs %u / %u\n",
+                    sign, f, mm(r).t_settle(2), mm(r).fest_f_at(2, 300.0) / f - 1.0, mm(r).k2_final[2], mm(r).t_settle(1),
+                    mm(cold).t_settle(1), mm(r).fest_f_at(1, 300.0) / f - 1.0, mm(r).t_settle(0), mm(cold).t_settle(0),
+                    mm(r).fest_resets[1], mm(r).fest_resets[2]);
+        EXPECT_TRUE(mm(r).t_settle(2) > 0.0);
+        EXPECT_LE(mm(r).t_settle(2), 0.55 * 340.0);
+        EXPECT_LE(std::fabs(mm(r).fest_f_at(2, 300.0) / f - 1.0), 0.05);
+        EXPECT_LE(std::fabs(mm(r).fest_f_at(1, 300.0) / f - 1.0), 0.05);
+        EXPECT_LE(mm(r).fest_max_confident(1), 1.1 * f);
+        EXPECT_LE(mm(r).fest_max_confident(2), 1.1 * f);
+        if (mm(cold).t_settle(1) > 0.0) { EXPECT_LE(mm(r).t_settle(1), mm(cold).t_settle(1) + 10.0); }
+        EXPECT_EQ_INT(mm(r).fest_resets[1] + mm(r).fest_resets[2], 0);
+    }
+}
+
 SIM_TEST(runs_are_bit_identical)
 {
     sil::InprocOptions o;
@@ -419,6 +452,7 @@ int main()
         cmocka_unit_test(a3_5_adaptive_pitch_cold_start),
         cmocka_unit_test(a3_6_adaptive_roll),
         cmocka_unit_test(a3_9_adaptive_pitch_robustness),
+        cmocka_unit_test(a3_7_adaptive_on_the_coupled_plant),
         cmocka_unit_test(runs_are_bit_identical)};
     return cmocka_run_group_tests_name("pd_sil", tests, nullptr, nullptr);
 }
