@@ -319,6 +319,7 @@ void pd_fest_init(pd_fest_t *s)
     s->gate_rose = false;
     s->f_moved = false;
     s->r_hold_q16 = 0u;
+    s->resid_run = 0u;
     s->period_end = false;
     fe_reset(s, false);
 }
@@ -652,6 +653,7 @@ static void fe_transition(pd_fest_t *s, bool conf_ok, bool fading, bool keep)
             fe_enter_hold(s, false);
         } else if (conf_ok) {
             s->state = (uint8_t)PD_FEST_TRACK;
+            s->resid_run = 0u;
         } else {
             /* still acquiring */
         }
@@ -675,6 +677,28 @@ static void fe_transition(pd_fest_t *s, bool conf_ok, bool fading, bool keep)
     }
 }
 
+/* the §8 divergence reasons of this period end */
+static uint32_t fe_faults(const pd_fest_t *s, uint32_t n_y, bool jump, bool numeric)
+{
+    uint32_t fault = 0u;
+    if (((uint64_t)s->n_clamp * n_y) > FE_CLAMP_SAMPLES) {
+        fault |= PD_FEST_F_CLAMP;
+    }
+    if ((s->state == (uint8_t)PD_FEST_TRACK) && jump) {
+        fault |= PD_FEST_F_JUMP;
+    }
+    if (s->n_att_bad >= FE_N_ATTEN_FAULT) {
+        fault |= PD_FEST_F_ATTEN;
+    }
+    if (s->e_fault) {
+        fault |= PD_FEST_F_RESID;
+    }
+    if (numeric) {
+        fault |= PD_FEST_F_NUMERIC;
+    }
+    return fault;
+}
+
 static void fe_period(pd_fest_t *s, uint32_t n_y)
 {
     const uint32_t f = s->f_raw_q32;
@@ -686,7 +710,7 @@ static void fe_period(pd_fest_t *s, uint32_t n_y)
     const bool numeric = s->st_period != 0u;
     uint64_t att2;
     fx_status_t st_att = 0u;  /* a ratio beyond 2^24 is clamped below, not an error */
-    uint32_t fault = 0u;
+    uint32_t fault;
     bool conf_ok;
     s->f_moved = false;
     s->n_stable = (((dfa * 100u) < (fp * FE_STAB_PERCENT)) && moved) ? fe_inc(s->n_stable) : 0u;
@@ -700,30 +724,21 @@ static void fe_period(pd_fest_t *s, uint32_t n_y)
     conf_ok = s->gate && (s->kap_q30 >= FE_KAPPA_CONF) && (s->p_q30 <= FE_P_CONF) &&
               (s->att_q16 <= FE_ATT_CONF_Q16) && (s->n_stable >= FE_N_STAB) &&
               (((uint64_t)s->n_stable * n_y * s->f_rep_q32) >= ((uint64_t)FE_CYC_Q32_TY << 32)) && !on_clamp;
-    if (((uint64_t)s->n_clamp * n_y) > FE_CLAMP_SAMPLES) {
-        fault |= PD_FEST_F_CLAMP;
-    }
-    if ((s->state == (uint8_t)PD_FEST_TRACK) && ((dfa * FE_JUMP_FIFTHS) > fp)) {
-        fault |= PD_FEST_F_JUMP;
-    }
-    if (s->n_att_bad >= FE_N_ATTEN_FAULT) {
-        fault |= PD_FEST_F_ATTEN;
-    }
-    if (s->e_fault) {
-        fault |= PD_FEST_F_RESID;
-    }
-    if (numeric) {
-        fault |= PD_FEST_F_NUMERIC;
-    }
+    fault = fe_faults(s, n_y, (dfa * FE_JUMP_FIFTHS) > fp, numeric);
     s->st_sticky |= s->st_period;
     s->st_period = 0u;
     if (s->state == (uint8_t)PD_FEST_FAULT) {
-        /* one period in FAULT (k2_cold applied by the law), then ACQUIRE at f0 */
-        fe_reset(s, !numeric);
+        /* one period in FAULT (k2_cold applied by the law), then ACQUIRE at f0; the predictor is kept
+           unless a numeric fault, or a second RESID FAULT since the last TRACK, says its rates are wrong
+           (RESID zeroes the residual, so the injection could never correct them) */
+        const bool keep = (!numeric) && (s->resid_run < 2u);
+        s->resid_run = keep ? s->resid_run : 0u;
+        fe_reset(s, keep);
     } else if (fault != 0u) {
         s->state = (uint8_t)PD_FEST_FAULT;
         s->fault = fault;
         fx_cnt_inc(&s->resets);
+        s->resid_run = ((fault & PD_FEST_F_RESID) != 0u) ? fe_inc(s->resid_run) : 0u;
     } else {
         fe_transition(s, conf_ok, s->att_q16 > FE_ATT_LOSE_Q16, !on_clamp);
     }

@@ -80,11 +80,6 @@ typedef struct {
 typedef struct {
     /* outputs of the last period end (what the law and the telemetry read) */
     uint32_t f_hat_q32;         /* published estimate [Hz] */
-    uint8_t  state;             /* PD_FEST_* */
-    bool     confident;         /* TRACK */
-    bool     hold_valid;        /* HOLD entered from TRACK */
-    bool     gate;
-    bool     period_end;        /* this sample closed a control period */
     uint32_t p_a_q30;           /* RLS P of the notch */
     uint32_t att_q16;           /* notch rms(out) / rms(in) */
     uint32_t r_e_q16;           /* running RMS of the decimated residual / sigma_y */
@@ -95,7 +90,6 @@ typedef struct {
     uint32_t resets;            /* FAULTs since init (saturating) */
     fx_status_t st_sticky;      /* fx status bits seen since init */
     /* predictor and regressors (per sample) */
-    bool     pred_init;
     int64_t  xh[PD_FEST_NX];
     int64_t  w[PD_FEST_NR][PD_FEST_NX];
     int64_t  phi_sum[PD_FEST_NR];
@@ -122,7 +116,6 @@ typedef struct {
     int64_t  ms_n_q32;
     uint32_t sig_ref_q16;
     int32_t  a_q29;
-    bool     a_set;             /* a_q29 started from the prior since the last reset */
     uint32_t p_q30;
     uint32_t kap_q30;
     int64_t  s1_q24;
@@ -131,18 +124,27 @@ typedef struct {
     int64_t  ms_in_q32;
     int64_t  ms_out_q32;
     /* frequency and period logic */
-    bool     f_moved;
     uint32_t f_raw_q32;         /* f_hat before publication (the reference's f_hat_) */
     uint32_t f_prev_q32;
     uint32_t f_rep_q32;         /* observed frequency of the reported line */
     uint32_t n_stable;
     uint32_t n_clamp;
     uint32_t n_att_bad;
+    fx_status_t st_period;      /* fx status bits since the last period end (NUMERIC) */
+    uint32_t r_hold_q16;        /* r_e / sigma_y at HOLD entry */
+    uint32_t resid_run;         /* RESID FAULTs since the last TRACK (2: the predictor restarts) */
+    /* flags and the state (last: no padding between the wide fields) */
+    uint8_t  state;             /* PD_FEST_* */
+    bool     confident;         /* TRACK */
+    bool     hold_valid;        /* HOLD entered from TRACK */
+    bool     gate;
+    bool     period_end;        /* this sample closed a control period */
+    bool     pred_init;
+    bool     a_set;             /* a_q29 started from the prior since the last reset */
+    bool     f_moved;
     bool     e_fault;
     bool     held_conf;
     bool     gate_rose;
-    fx_status_t st_period;      /* fx status bits since the last period end (NUMERIC) */
-    uint32_t r_hold_q16;        /* r_e / sigma_y at HOLD entry */
 } pd_fest_t;
 
 /* FSW_OK-style check of the constants the loader's limits cannot see: 0 when usable, else a

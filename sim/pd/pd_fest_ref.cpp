@@ -670,12 +670,17 @@ void FestRef::step_period()
     if (state_ == FestState::Fault) {
         // one period in FAULT (k2_cold applied by the law), then ACQUIRE at f0. The predictor is
         // kept (its beta, x' follow the applied torque, which an attitude jump does not change)
-        // unless its state is not finite.
-        reset(finite_ok_);
+        // unless its state is not finite, or a second RESID FAULT since the last TRACK says its rates
+        // are wrong: RESID zeroes the residual, so the output injection could never correct them
+        // (found by feeding the port garbage, tests/pd/test_pd_fest.c: FAULT every other period, forever).
+        const bool keep_pred = finite_ok_ && resid_run_ < 2;
+        resid_run_ = keep_pred ? resid_run_ : 0;
+        reset(keep_pred);
     } else if (fault != 0u) {
         state_ = FestState::Fault;
         out_.fault = fault;
         ++out_.resets;
+        resid_run_ = (fault & kFestFaultResid) != 0u ? std::min(resid_run_ + 1, 1000) : 0;
     } else {
         switch (state_) {
         case FestState::Acquire:
@@ -683,6 +688,7 @@ void FestRef::step_period()
                 enter_hold(false);
             } else if (conf_ok) {
                 state_ = FestState::Track;
+                resid_run_ = 0;
             }
             break;
         case FestState::Track: {

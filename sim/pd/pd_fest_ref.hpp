@@ -291,6 +291,7 @@ private:
     bool finite_ok_ = true;
     bool e_fault_ = false, held_conf_ = false, gate_rose_ = false;
     double r_hold_rad_ = 0.0;       // r_e at HOLD entry, as env_
+    int resid_run_ = 0;             // RESID FAULTs since the last TRACK (2: the predictor restarts)
     FestState state_ = FestState::Acquire;
 };
 
