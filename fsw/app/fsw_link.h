@@ -43,7 +43,12 @@
 #define FSW_LINK_T_PONG         9u
 #define FSW_LINK_T_LINK_STATS  10u
 #define FSW_LINK_T_ERROR       11u
-#define FSW_LINK_T_MAX         11u
+/* The PIL session's own (fsw_pil.h): the board boots from host-sent configuration and image, and
+   reports its channel ranges, so one board image serves every registered mission. */
+#define FSW_LINK_T_BOOT        12u   /* host -> board: fsw_cfg_t + the staged boot image's length, CRC */
+#define FSW_LINK_T_BOOT_ACK    13u   /* board -> host: fsw_init's verdict + channel ranges */
+#define FSW_LINK_T_LIMITS      14u   /* board -> host: channel ranges after a table commit */
+#define FSW_LINK_T_MAX         14u
 
 /* Receive counters. Every delimiter ends one run of bytes; an empty run (back-to-back delimiters,
    e.g. a sender's leading sync byte) is `empty`; any other run is counted in exactly one of

@@ -30,7 +30,7 @@ def main():
     os.makedirs(out, exist_ok=True)
     rng = random.Random(20261205)
     seeds = {}
-    for t in range(1, 12):
+    for t in range(1, 15):
         seeds["type%02d" % t] = frame(t, rng.randrange(65536), bytes(rng.randrange(256) for _ in range(rng.randrange(40))))
     seeds["empty_payload"] = frame(8, 0, b"")
     seeds["max_payload"] = frame(4, 1, bytes(rng.randrange(1, 256) for _ in range(512)))

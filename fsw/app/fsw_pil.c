@@ -1,0 +1,633 @@
+/*
+ * fsw_pil.c — packet payloads and the board's side of the PIL session (fsw_pil.h, spec 00 §6.1).
+ */
+#include "fsw_pil.h"
+#include "fsw_codec.h"
+#include "fsw_missions_gen.h"
+#include "fx.h"
+
+/*
+ * The canonical description of every layout on the link: HELLO's layout hash is its CRC-32. Any
+ * change to a payload below must change this text; test_fsw_pil checks each writer's size against
+ * the FSW_PIL_*_BYTES the text repeats.
+ */
+uint32_t fsw_pil_layout_hash(void)
+{
+    static const char pil_layout[] =
+        "link v1: u8 version, u8 type, u16 seq, u16 len, payload[len], u32 crc32; cobs, 0x00 delimiter\n"
+        "HELLO 1 (16): u8 version, u8 0, u16 board, u32 layout_hash, u32 build_id, u32 missions\n"
+        "SENSOR 2 (148): i64 utime_us, i64 seq, u32 n_counts, i32 counts[16], u8 status[16], u32 mode_cmd, "
+        "u32 host_missed, u32 host_rejected, u32 tc, i32 tc_arg[8]\n"
+        "CMD 3 (84): i64 seq, u32 mode, u32 health, u32 n_act, i32 act_cnt[16]\n"
+        "TLM 4 (8+n): u32 insn, u32 layout, u8 tlm[n<=504]\n"
+        "TABLE_CHUNK 5 (16+n): u16 table_id, u16 n, u32 revision, u32 total_len, u32 offset, u8 data[n<=256]\n"
+        "TABLE_ACK 6 (16): u16 table_id, u16 result, u32 revision, u32 reason, u32 bytes_received\n"
+        "PING 8 / PONG 9 (<=32): u8 echo[]\n"
+        "LINK_STATS 10 (0 request, 84): u32 rx[10], u32 steps, u32 dups, u32 stale, u32 errors, u32 boots, "
+        "u32 tx_frames, u32 uart_overruns, u32 stack_used, u32 stack_size, u32 insn_max, u32 0\n"
+        "MODE_CMD 7 (4): u32 op (1 end)\n"
+        "ERROR 11 (8): u16 code, u16 type, u32 detail\n"
+        "BOOT 12 (24): u32 mission, u32 period_us, u16 stale_max, u16 0, u32 boot_mode, u32 image_len, u32 image_crc\n"
+        "BOOT_ACK 13 (8+4+8n): i32 rc, u32 reason, u32 n, n x (i32 min, i32 max)\n"
+        "LIMITS 14 (4+8n): u32 n, n x (i32 min, i32 max)\n";
+    return fx_crc32(0u, (const uint8_t *)pil_layout, sizeof(pil_layout) - 1u);
+}
+
+uint32_t fsw_pil_missions(void)
+{
+    uint32_t m = 0u;
+    uint32_t i;
+    for (i = 0u; i < FSW_N_MISSIONS; i++) {
+        if (fsw_mis_desc(i) != NULL) {
+            m |= (1u << i);
+        }
+    }
+    return m;
+}
+
+/* ------------------------------------------------------------------ payloads */
+
+void fsw_pil_wr_sensor(fsw_wr_t *w, const fsw_in_t *in)
+{
+    uint32_t i;
+    fsw_wr_i64(w, in->utime_us);
+    fsw_wr_i64(w, in->seq);
+    fsw_wr_u32(w, in->n_counts);
+    fsw_wr_i32n(w, in->counts, FSW_IN_MAX);
+    for (i = 0u; i < FSW_IN_MAX; i++) {
+        fsw_wr_u8(w, in->status[i]);
+    }
+    fsw_wr_u32(w, in->mode_cmd);
+    fsw_wr_u32(w, in->host_missed);
+    fsw_wr_u32(w, in->host_rejected);
+    fsw_wr_u32(w, in->tc);
+    fsw_wr_i32n(w, in->tc_arg, FSW_TC_ARGS);
+}
+
+bool fsw_pil_rd_sensor(fsw_rd_t *r, fsw_in_t *in)
+{
+    uint32_t i;
+    in->utime_us = fsw_rd_i64(r);
+    in->seq = fsw_rd_i64(r);
+    in->n_counts = fsw_rd_u32(r);
+    fsw_rd_i32n(r, in->counts, FSW_IN_MAX);
+    for (i = 0u; i < FSW_IN_MAX; i++) {
+        in->status[i] = fsw_rd_u8(r);
+    }
+    in->mode_cmd = fsw_rd_u32(r);
+    in->host_missed = fsw_rd_u32(r);
+    in->host_rejected = fsw_rd_u32(r);
+    in->tc = fsw_rd_u32(r);
+    fsw_rd_i32n(r, in->tc_arg, FSW_TC_ARGS);
+    return (!r->err) && (in->n_counts <= FSW_IN_MAX);
+}
+
+void fsw_pil_wr_cmd(fsw_wr_t *w, const fsw_pil_cmd_t *c)
+{
+    fsw_wr_i64(w, c->seq);
+    fsw_wr_u32(w, c->mode);
+    fsw_wr_u32(w, c->health);
+    fsw_wr_u32(w, c->n_act);
+    fsw_wr_i32n(w, c->act_cnt, FSW_ACT_MAX);
+}
+
+bool fsw_pil_rd_cmd(fsw_rd_t *r, fsw_pil_cmd_t *c)
+{
+    c->seq = fsw_rd_i64(r);
+    c->mode = fsw_rd_u32(r);
+    c->health = fsw_rd_u32(r);
+    c->n_act = fsw_rd_u32(r);
+    fsw_rd_i32n(r, c->act_cnt, FSW_ACT_MAX);
+    return (!r->err) && (c->n_act <= FSW_ACT_MAX);
+}
+
+void fsw_pil_wr_hello(fsw_wr_t *w, const fsw_pil_hello_t *h)
+{
+    fsw_wr_u8(w, h->version);
+    fsw_wr_u8(w, 0u);
+    fsw_wr_u16(w, h->board_id);
+    fsw_wr_u32(w, h->layout_hash);
+    fsw_wr_u32(w, h->build_id);
+    fsw_wr_u32(w, h->missions);
+}
+
+bool fsw_pil_rd_hello(fsw_rd_t *r, fsw_pil_hello_t *h)
+{
+    h->version = fsw_rd_u8(r);
+    (void)fsw_rd_u8(r);
+    h->board_id = fsw_rd_u16(r);
+    h->layout_hash = fsw_rd_u32(r);
+    h->build_id = fsw_rd_u32(r);
+    h->missions = fsw_rd_u32(r);
+    return !r->err;
+}
+
+void fsw_pil_wr_chunk(fsw_wr_t *w, const fsw_table_chunk_t *c)
+{
+    uint32_t i;
+    uint32_t n = c->n;
+    if (n > FSW_TABLE_CHUNK_MAX) {
+        n = FSW_TABLE_CHUNK_MAX;
+    }
+    fsw_wr_u16(w, c->table_id);
+    fsw_wr_u16(w, (uint16_t)n);
+    fsw_wr_u32(w, c->revision);
+    fsw_wr_u32(w, c->total_len);
+    fsw_wr_u32(w, c->offset);
+    for (i = 0u; i < n; i++) {
+        fsw_wr_u8(w, c->data[i]);
+    }
+}
+
+bool fsw_pil_rd_chunk(fsw_rd_t *r, fsw_table_chunk_t *c)
+{
+    bool ok;
+    c->table_id = fsw_rd_u16(r);
+    c->n = fsw_rd_u16(r);
+    c->revision = fsw_rd_u32(r);
+    c->total_len = fsw_rd_u32(r);
+    c->offset = fsw_rd_u32(r);
+    /* The data must be exactly the rest of the payload. */
+    ok = (!r->err) && (c->n >= 1u) && (c->n <= FSW_TABLE_CHUNK_MAX) && ((r->len - r->pos) == c->n);
+    c->data = ok ? &r->buf[r->pos] : NULL;
+    return ok;
+}
+
+void fsw_pil_wr_ack(fsw_wr_t *w, const fsw_pil_ack_t *a)
+{
+    fsw_wr_u16(w, a->table_id);
+    fsw_wr_u16(w, a->result);
+    fsw_wr_u32(w, a->revision);
+    fsw_wr_u32(w, a->reason);
+    fsw_wr_u32(w, a->bytes_received);
+}
+
+bool fsw_pil_rd_ack(fsw_rd_t *r, fsw_pil_ack_t *a)
+{
+    a->table_id = fsw_rd_u16(r);
+    a->result = fsw_rd_u16(r);
+    a->revision = fsw_rd_u32(r);
+    a->reason = fsw_rd_u32(r);
+    a->bytes_received = fsw_rd_u32(r);
+    return (!r->err) && (a->result <= FSW_PIL_ACK_REJECTED);
+}
+
+void fsw_pil_wr_boot(fsw_wr_t *w, const fsw_pil_boot_t *b)
+{
+    fsw_wr_u32(w, b->cfg.mission);
+    fsw_wr_u32(w, b->cfg.period_us);
+    fsw_wr_u16(w, b->cfg.stale_max);
+    fsw_wr_u16(w, 0u);
+    fsw_wr_u32(w, b->cfg.boot_mode);
+    fsw_wr_u32(w, b->image_len);
+    fsw_wr_u32(w, b->image_crc);
+}
+
+bool fsw_pil_rd_boot(fsw_rd_t *r, fsw_pil_boot_t *b)
+{
+    b->cfg.mission = fsw_rd_u32(r);
+    b->cfg.period_us = fsw_rd_u32(r);
+    b->cfg.stale_max = fsw_rd_u16(r);
+    (void)fsw_rd_u16(r);
+    b->cfg.boot_mode = fsw_rd_u32(r);
+    b->image_len = fsw_rd_u32(r);
+    b->image_crc = fsw_rd_u32(r);
+    return !r->err;
+}
+
+void fsw_pil_wr_ranges(fsw_wr_t *w, const fsw_range_t *rng, uint32_t n)
+{
+    uint32_t i;
+    uint32_t m = n;
+    if (m > FSW_IN_MAX) {
+        m = FSW_IN_MAX;
+    }
+    fsw_wr_u32(w, m);
+    for (i = 0u; i < m; i++) {
+        fsw_wr_i32(w, rng[i].min);
+        fsw_wr_i32(w, rng[i].max);
+    }
+}
+
+bool fsw_pil_rd_ranges(fsw_rd_t *r, fsw_range_t *rng, uint32_t *n)
+{
+    uint32_t m = fsw_rd_u32(r);
+    bool ok = (!r->err) && (m <= FSW_IN_MAX);
+    *n = 0u;
+    if (ok) {
+        uint32_t i;
+        for (i = 0u; i < m; i++) {
+            rng[i].min = fsw_rd_i32(r);
+            rng[i].max = fsw_rd_i32(r);
+        }
+        ok = !r->err;
+        *n = ok ? m : 0u;
+    }
+    return ok;
+}
+
+void fsw_pil_wr_stats(fsw_wr_t *w, const fsw_pil_stats_t *s)
+{
+    fsw_wr_u32(w, s->rx.bytes);
+    fsw_wr_u32(w, s->rx.empty);
+    fsw_wr_u32(w, s->rx.frames);
+    fsw_wr_u32(w, s->rx.err_oversize);
+    fsw_wr_u32(w, s->rx.err_cobs);
+    fsw_wr_u32(w, s->rx.err_short);
+    fsw_wr_u32(w, s->rx.err_len);
+    fsw_wr_u32(w, s->rx.err_crc);
+    fsw_wr_u32(w, s->rx.err_version);
+    fsw_wr_u32(w, s->rx.err_type);
+    fsw_wr_u32(w, s->steps);
+    fsw_wr_u32(w, s->dups);
+    fsw_wr_u32(w, s->stale);
+    fsw_wr_u32(w, s->errors);
+    fsw_wr_u32(w, s->boots);
+    fsw_wr_u32(w, s->tx_frames);
+    fsw_wr_u32(w, s->uart_overruns);
+    fsw_wr_u32(w, s->stack_used);
+    fsw_wr_u32(w, s->stack_size);
+    fsw_wr_u32(w, s->insn_max);
+    fsw_wr_u32(w, s->reserved);
+}
+
+bool fsw_pil_rd_stats(fsw_rd_t *r, fsw_pil_stats_t *s)
+{
+    s->rx.bytes = fsw_rd_u32(r);
+    s->rx.empty = fsw_rd_u32(r);
+    s->rx.frames = fsw_rd_u32(r);
+    s->rx.err_oversize = fsw_rd_u32(r);
+    s->rx.err_cobs = fsw_rd_u32(r);
+    s->rx.err_short = fsw_rd_u32(r);
+    s->rx.err_len = fsw_rd_u32(r);
+    s->rx.err_crc = fsw_rd_u32(r);
+    s->rx.err_version = fsw_rd_u32(r);
+    s->rx.err_type = fsw_rd_u32(r);
+    s->steps = fsw_rd_u32(r);
+    s->dups = fsw_rd_u32(r);
+    s->stale = fsw_rd_u32(r);
+    s->errors = fsw_rd_u32(r);
+    s->boots = fsw_rd_u32(r);
+    s->tx_frames = fsw_rd_u32(r);
+    s->uart_overruns = fsw_rd_u32(r);
+    s->stack_used = fsw_rd_u32(r);
+    s->stack_size = fsw_rd_u32(r);
+    s->insn_max = fsw_rd_u32(r);
+    s->reserved = fsw_rd_u32(r);
+    return !r->err;
+}
+
+void fsw_pil_wr_error(fsw_wr_t *w, const fsw_pil_error_t *e)
+{
+    fsw_wr_u16(w, e->code);
+    fsw_wr_u16(w, e->type);
+    fsw_wr_u32(w, e->detail);
+}
+
+bool fsw_pil_rd_error(fsw_rd_t *r, fsw_pil_error_t *e)
+{
+    e->code = fsw_rd_u16(r);
+    e->type = fsw_rd_u16(r);
+    e->detail = fsw_rd_u32(r);
+    return !r->err;
+}
+
+void fsw_pil_table_chunk(fsw_t *f, const fsw_table_chunk_t *c, fsw_pil_ack_t *ack)
+{
+    uint32_t why = 0u;
+    const uint32_t rej0 = f->tlm.n_tbl_rej;
+    const fsw_rc_t rc = fsw_table_upload(f, c, &why);
+    const fsw_table_t *t = fsw_mission_table(f);
+
+    ack->table_id = c->table_id;
+    ack->revision = c->revision;
+    ack->reason = 0u;
+    ack->bytes_received = t->cand_got;
+    if ((f->tlm.n_tbl_rej != rej0) || (rc != FSW_OK)) {
+        ack->result = (uint16_t)FSW_PIL_ACK_REJECTED;
+        ack->reason = why & 0xFFFFu;
+    } else if (t->state == FSW_TBL_S_READY) {
+        ack->result = (uint16_t)FSW_PIL_ACK_ACCEPTED;   /* validated; commits at a step boundary */
+        ack->bytes_received = c->total_len;
+    } else {
+        ack->result = (uint16_t)FSW_PIL_ACK_PARTIAL;
+    }
+}
+
+/* ------------------------------------------------------------------ the board's side */
+
+/* Appends one frame to the transmit queue (and to the duplicate cache when cache is true). */
+static void board_queue(fsw_pil_board_t *b, uint8_t type, uint16_t seq, uint32_t len, bool cache)
+{
+    uint32_t n = 0u;
+    if ((b->tx_len + FSW_LINK_MAX_WIRE) <= FSW_PIL_TX_CAP) {
+        n = fsw_link_encode(type, seq, b->pay, len, &b->tx[b->tx_len], FSW_PIL_TX_CAP - b->tx_len);
+    }
+    if (n > 0u) {
+        if (cache && ((b->cache_len + n) <= FSW_PIL_TX_CAP)) {
+            uint32_t i;
+            for (i = 0u; i < n; i++) {
+                b->cache[b->cache_len + i] = b->tx[b->tx_len + i];
+            }
+            b->cache_len += n;
+        }
+        b->tx_len += n;
+        fx_cnt_inc(&b->st.tx_frames);
+    }
+}
+
+static void board_error(fsw_pil_board_t *b, uint16_t code, uint8_t type, uint32_t detail)
+{
+    fsw_wr_t w;
+    fsw_pil_error_t e;
+    e.code = code;
+    e.type = type;
+    e.detail = detail;
+    fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+    fsw_pil_wr_error(&w, &e);
+    fx_cnt_inc(&b->st.errors);
+    b->tx_seq++;
+    board_queue(b, (uint8_t)FSW_LINK_T_ERROR, b->tx_seq, w.pos, false);
+}
+
+static void board_hello(fsw_pil_board_t *b)
+{
+    fsw_wr_t w;
+    fsw_pil_hello_t h;
+    h.version = (uint8_t)FSW_LINK_VERSION;
+    h.board_id = b->board_id;
+    h.layout_hash = fsw_pil_layout_hash();
+    h.build_id = b->build_id;
+    h.missions = fsw_pil_missions();
+    fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+    fsw_pil_wr_hello(&w, &h);
+    b->tx_seq++;
+    board_queue(b, (uint8_t)FSW_LINK_T_HELLO, b->tx_seq, w.pos, false);
+}
+
+/* The ranges of the executive's channels, as fsw_sensor_ranges gives them. */
+static void board_wr_ranges(const fsw_pil_board_t *b, fsw_wr_t *w)
+{
+    fsw_range_t r[FSW_IN_MAX];
+    uint32_t n = 0u;
+    fsw_sensor_ranges(&b->fsw, r, &n);
+    fsw_pil_wr_ranges(w, r, n);
+}
+
+void fsw_pil_board_init(fsw_pil_board_t *b, uint16_t board_id, uint32_t build_id)
+{
+    fsw_link_dec_init(&b->dec);
+    b->st.rx = b->dec.st;
+    b->st.steps = 0u;
+    b->st.dups = 0u;
+    b->st.stale = 0u;
+    b->st.errors = 0u;
+    b->st.boots = 0u;
+    b->st.tx_frames = 0u;
+    b->st.uart_overruns = 0u;
+    b->st.stack_used = 0u;
+    b->st.stack_size = 0u;
+    b->st.insn_max = 0u;
+    b->st.reserved = 0u;
+    b->stage_got = 0u;
+    b->tx_len = 0u;
+    b->cache_len = 0u;
+    b->tbl_acc_seen = 0u;
+    b->build_id = build_id;
+    b->board_id = board_id;
+    b->last_seq = 0u;
+    b->tx_seq = 0u;
+    b->booted = false;
+    b->have_last = false;
+    board_hello(b);
+}
+
+/* TABLE_CHUNK: before BOOT it stages the boot image (in order, from offset 0); after, an upload. */
+static void board_chunk(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
+{
+    fsw_table_chunk_t c;
+    fsw_pil_ack_t a;
+    fsw_wr_t w;
+    if (!fsw_pil_rd_chunk(r, &c)) {
+        board_error(b, (uint16_t)FSW_PIL_E_LEN, (uint8_t)FSW_LINK_T_TABLE_CHUNK, r->len);
+    } else if (b->booted) {
+        fsw_pil_table_chunk(&b->fsw, &c, &a);
+        fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+        fsw_pil_wr_ack(&w, &a);
+        board_queue(b, (uint8_t)FSW_LINK_T_TABLE_ACK, seq, w.pos, false);
+    } else {
+        /* Chunks stage in order. The host re-sends a chunk whose ack it lost; a chunk at offset 0
+           restarts the staging, and anything else out of order is refused (the host starts over). */
+        if (c.offset == 0u) {
+            b->stage_got = 0u;
+        } else if ((c.offset < b->stage_got) && ((b->stage_got - c.offset) == c.n)) {
+            b->stage_got = c.offset;   /* the last chunk again (its ack was lost): take it again */
+        } else {
+            /* in order, or refused below */
+        }
+        if ((c.offset != b->stage_got) || (c.total_len > FSW_TABLE_CAP_BYTES) ||
+            ((c.offset + c.n) > c.total_len)) {
+            b->stage_got = 0u;
+            board_error(b, (uint16_t)FSW_PIL_E_STAGE, (uint8_t)FSW_LINK_T_TABLE_CHUNK, c.offset);
+        } else {
+            uint32_t i;
+            for (i = 0u; i < c.n; i++) {
+                b->stage[c.offset + i] = c.data[i];
+            }
+            b->stage_got += c.n;
+            a.table_id = c.table_id;
+            a.revision = c.revision;
+            a.reason = 0u;
+            a.bytes_received = b->stage_got;
+            a.result = (uint16_t)((b->stage_got == c.total_len) ? FSW_PIL_ACK_ACCEPTED : FSW_PIL_ACK_PARTIAL);
+            fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+            fsw_pil_wr_ack(&w, &a);
+            board_queue(b, (uint8_t)FSW_LINK_T_TABLE_ACK, seq, w.pos, false);
+        }
+    }
+}
+
+/* BOOT: fsw_init from the staged image. A BOOT is always answered; a second one re-boots. */
+static void board_boot(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
+{
+    fsw_pil_boot_t bt;
+    fsw_wr_t w;
+    if (!fsw_pil_rd_boot(r, &bt) || (r->pos != r->len)) {
+        board_error(b, (uint16_t)FSW_PIL_E_LEN, (uint8_t)FSW_LINK_T_BOOT, r->len);
+    } else {
+        int32_t rc;
+        uint32_t reason = 0u;
+        fx_cnt_inc(&b->st.boots);
+        if ((bt.image_len > FSW_TABLE_CAP_BYTES) || (bt.image_len != b->stage_got) ||
+            ((bt.image_len > 0u) && (fx_crc32(0u, b->stage, bt.image_len) != bt.image_crc))) {
+            rc = FSW_PIL_BOOT_BAD_IMAGE;
+        } else if ((bt.cfg.mission >= FSW_N_MISSIONS) || (bt.cfg.period_us == 0u) || (bt.cfg.stale_max == 0u)) {
+            rc = FSW_PIL_BOOT_BAD_CFG;
+        } else {
+            const fsw_rc_t frc = fsw_init(&b->fsw, &bt.cfg, (bt.image_len > 0u) ? b->stage : NULL, bt.image_len);
+            rc = (int32_t)frc;
+            reason = b->fsw.tlm.tbl_reason;
+            b->booted = true;
+            b->have_last = false;
+            b->cache_len = 0u;
+            b->tbl_acc_seen = b->fsw.tlm.n_tbl_acc;
+        }
+        fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+        fsw_wr_i32(&w, rc);
+        fsw_wr_u32(&w, reason);
+        if (b->booted && (rc >= 0)) {
+            board_wr_ranges(b, &w);
+        } else {
+            fsw_wr_u32(&w, 0u);
+        }
+        board_queue(b, (uint8_t)FSW_LINK_T_BOOT_ACK, seq, w.pos, false);
+    }
+}
+
+/* SENSOR: the bridge's sequence rules on the 16-bit link seq. */
+static fsw_pil_rx_t board_sensor(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
+{
+    fsw_pil_rx_t act = FSW_PIL_RX_SEND;
+    if ((r->len != FSW_PIL_SENSOR_BYTES) || !fsw_pil_rd_sensor(r, &b->in)) {
+        board_error(b, (uint16_t)FSW_PIL_E_LEN, (uint8_t)FSW_LINK_T_SENSOR, r->len);
+    } else if (!b->booted) {
+        board_error(b, (uint16_t)FSW_PIL_E_NOT_BOOTED, (uint8_t)FSW_LINK_T_SENSOR, 0u);
+    } else if (b->have_last && (seq == b->last_seq)) {
+        uint32_t i;
+        fx_cnt_inc(&b->st.dups);
+        for (i = 0u; (i < b->cache_len) && ((b->tx_len + i) < FSW_PIL_TX_CAP); i++) {
+            b->tx[b->tx_len + i] = b->cache[i];
+        }
+        b->tx_len += i;
+    } else if (b->have_last && (fsw_link_seq_diff(seq, b->last_seq) < 0)) {
+        fx_cnt_inc(&b->st.stale);
+        act = FSW_PIL_RX_NONE;
+    } else {
+        b->last_seq = seq;
+        b->have_last = true;
+        act = FSW_PIL_RX_STEP;
+    }
+    return act;
+}
+
+static fsw_pil_rx_t board_dispatch(fsw_pil_board_t *b)
+{
+    const fsw_link_frame_t *fr = &b->dec.frame;
+    fsw_pil_rx_t act = FSW_PIL_RX_SEND;
+    fsw_rd_t r;
+    uint32_t i;
+    fsw_rd_init(&r, fr->payload, fr->len);
+    switch (fr->type) {
+    case FSW_LINK_T_SENSOR:
+        act = board_sensor(b, &r, fr->seq);
+        break;
+    case FSW_LINK_T_TABLE_CHUNK:
+        board_chunk(b, &r, fr->seq);
+        break;
+    case FSW_LINK_T_BOOT:
+        board_boot(b, &r, fr->seq);
+        break;
+    case FSW_LINK_T_HELLO:
+        board_hello(b);
+        break;
+    case FSW_LINK_T_PING:
+        if (fr->len > FSW_PIL_PING_MAX) {
+            board_error(b, (uint16_t)FSW_PIL_E_LEN, (uint8_t)FSW_LINK_T_PING, fr->len);
+        } else {
+            for (i = 0u; i < fr->len; i++) {
+                b->pay[i] = fr->payload[i];
+            }
+            board_queue(b, (uint8_t)FSW_LINK_T_PONG, fr->seq, fr->len, false);
+        }
+        break;
+    case FSW_LINK_T_LINK_STATS: {
+        fsw_wr_t w;
+        b->st.rx = b->dec.st;
+        fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+        fsw_pil_wr_stats(&w, &b->st);
+        board_queue(b, (uint8_t)FSW_LINK_T_LINK_STATS, fr->seq, w.pos, false);
+        break;
+    }
+    case FSW_LINK_T_MODE_CMD: {
+        fsw_rd_t m;
+        fsw_rd_init(&m, fr->payload, fr->len);
+        if ((fr->len == 4u) && (fsw_rd_u32(&m) == FSW_PIL_MODE_END)) {
+            for (i = 0u; i < fr->len; i++) {
+                b->pay[i] = fr->payload[i];
+            }
+            board_queue(b, (uint8_t)FSW_LINK_T_MODE_CMD, fr->seq, fr->len, false);
+            act = FSW_PIL_RX_END;
+        } else {
+            board_error(b, (uint16_t)FSW_PIL_E_FIELD, (uint8_t)FSW_LINK_T_MODE_CMD, fr->len);
+        }
+        break;
+    }
+    default:
+        /* CMD, TLM, TABLE_ACK, PONG, ERROR, BOOT_ACK, LIMITS: the board never receives these */
+        board_error(b, (uint16_t)FSW_PIL_E_TYPE, fr->type, 0u);
+        break;
+    }
+    return act;
+}
+
+fsw_pil_rx_t fsw_pil_board_rx(fsw_pil_board_t *b, uint8_t byte)
+{
+    fsw_pil_rx_t act = FSW_PIL_RX_NONE;
+    if (fsw_link_rx_byte(&b->dec, byte)) {
+        act = board_dispatch(b);
+    }
+    if ((act == FSW_PIL_RX_SEND) && (b->tx_len == 0u)) {
+        act = FSW_PIL_RX_NONE;
+    }
+    return act;
+}
+
+void fsw_pil_board_step(fsw_pil_board_t *b)
+{
+    fsw_step(&b->fsw, &b->in, &b->out);
+}
+
+void fsw_pil_board_finish(fsw_pil_board_t *b, uint32_t insn)
+{
+    fsw_wr_t w;
+    fsw_pil_cmd_t c;
+    uint32_t i;
+    uint32_t n;
+
+    fx_cnt_inc(&b->st.steps);
+    if (insn > b->st.insn_max) {
+        b->st.insn_max = insn;
+    }
+    b->cache_len = 0u;
+    if (b->fsw.tlm.n_tbl_acc != b->tbl_acc_seen) {
+        b->tbl_acc_seen = b->fsw.tlm.n_tbl_acc;
+        fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+        board_wr_ranges(b, &w);
+        board_queue(b, (uint8_t)FSW_LINK_T_LIMITS, b->last_seq, w.pos, true);
+    }
+    c.seq = b->in.seq;
+    c.mode = b->out.mode;
+    c.health = b->out.health;
+    c.n_act = (b->out.n_act > FSW_ACT_MAX) ? FSW_ACT_MAX : b->out.n_act;
+    for (i = 0u; i < FSW_ACT_MAX; i++) {
+        c.act_cnt[i] = (i < c.n_act) ? b->out.act_cnt[i] : 0;
+    }
+    fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+    fsw_pil_wr_cmd(&w, &c);
+    board_queue(b, (uint8_t)FSW_LINK_T_CMD, b->last_seq, w.pos, true);
+
+    fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
+    fsw_wr_u32(&w, insn);
+    fsw_wr_u32(&w, fsw_tlm_layout(&b->out.tlm));
+    n = fsw_tlm_encode(&b->out.tlm, &b->pay[FSW_PIL_TLM_HEAD_BYTES], FSW_PIL_TLM_MAX);
+    if (n == 0u) {
+        board_error(b, (uint16_t)FSW_PIL_E_TLM_SIZE, (uint8_t)FSW_LINK_T_TLM, 0u);
+    } else {
+        board_queue(b, (uint8_t)FSW_LINK_T_TLM, b->last_seq, FSW_PIL_TLM_HEAD_BYTES + n, true);
+    }
+}
+
+void fsw_pil_board_sent(fsw_pil_board_t *b)
+{
+    b->tx_len = 0u;
+}
