@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""mkcorpus_link.py - seed corpus for tests/fuzz/fuzz_link_decoder (spec 00 §8 "Fuzzing").
+"""mkcorpus_link.py - seed corpus for tests/fuzz/fuzz_link_decoder and fuzz_pil_board (spec 00 §8 "Fuzzing").
 
 Byte streams of spec 00 §6.1 frames built by the independent oracle of tests/app/gen_link_vectors.py
 (Python struct, zlib.crc32, COBS from the paper): every packet type, empty and maximal payloads,
@@ -47,6 +47,20 @@ def main():
     seeds["wrong_len"] = body_frame(1, 2, 1, 4, b"abc")
     seeds["type_zero"] = body_frame(1, 0, 1, 3, b"abc")
     seeds["oversize"] = bytes([0x42]) * 600 + b"\x00" + frame(2, 10, b"ok")
+    # PIL session seeds (fsw/app/fsw_pil.h layouts): a boot without a table, then flight steps,
+    # a duplicate and an old frame, a staged boot image's first chunk, an upload chunk, stats, END.
+    boot = struct.pack("<IIHHIII", 0, 20000, 50, 0, 2, 0, 0)
+
+    def sensor(k, counts=(1000, -2000), mode=0xFFFFFFFF, tc=0):
+        c = list(counts) + [0] * (16 - len(counts))
+        return struct.pack("<qqI16i16BIIII8i", k * 20000, k, len(counts), *c, *([0] * 16), mode, 0, 0, tc, *([0] * 8))
+    chunk = struct.pack("<HHIII", 0x0B5E, 40, 1, 300, 0) + bytes(range(1, 41))
+    seeds["pil_boot_steps"] = frame(12, 1, boot) + b"".join(frame(2, k, sensor(k)) for k in range(1, 6))
+    seeds["pil_dup_stale"] = (frame(12, 1, boot) + frame(2, 3, sensor(3)) + frame(2, 3, sensor(3)) +
+                              frame(2, 2, sensor(2)) + frame(2, 4, sensor(4, mode=1)))
+    seeds["pil_stage_chunk"] = frame(5, 9, chunk) + frame(12, 10, boot)
+    seeds["pil_upload_stats_end"] = (frame(12, 1, boot) + frame(5, 2, chunk) + frame(10, 3, b"") +
+                                     frame(8, 4, b"ping") + frame(1, 5, b"") + frame(7, 6, struct.pack("<I", 1)))
     for name, data in seeds.items():
         with open(os.path.join(out, name), "wb") as fh:
             fh.write(data)
