@@ -18,17 +18,17 @@ uint32_t fsw_pil_layout_hash(void)
         "HELLO 1 (16): u8 version, u8 0, u16 board, u32 layout_hash, u32 build_id, u32 missions\n"
         "SENSOR 2 (148): i64 utime_us, i64 seq, u32 n_counts, i32 counts[16], u8 status[16], u32 mode_cmd, "
         "u32 host_missed, u32 host_rejected, u32 tc, i32 tc_arg[8]\n"
-        "CMD 3 (84): i64 seq, u32 mode, u32 health, u32 n_act, i32 act_cnt[16]\n"
+        "CMD 3 (88): i64 seq, u32 mode, u32 health, u32 n_act, i32 act_cnt[16], u32 lim_gen\n"
         "TLM 4 (8+n): u32 insn, u32 layout, u8 tlm[n<=504]\n"
         "TABLE_CHUNK 5 (16+n): u16 table_id, u16 n, u32 revision, u32 total_len, u32 offset, u8 data[n<=256]\n"
         "TABLE_ACK 6 (16): u16 table_id, u16 result, u32 revision, u32 reason, u32 bytes_received\n"
         "PING 8 / PONG 9 (<=32): u8 echo[]\n"
         "LINK_STATS 10 (0 request, 84): u32 rx[10], u32 steps, u32 dups, u32 stale, u32 errors, u32 boots, "
         "u32 tx_frames, u32 uart_overruns, u32 stack_used, u32 stack_size, u32 insn_max, u32 0\n"
-        "MODE_CMD 7 (4): u32 op (1 end)\n"
+        "MODE_CMD 7 (4): u32 op (1 end, 2 reset)\n"
         "ERROR 11 (8): u16 code, u16 type, u32 detail\n"
         "BOOT 12 (24): u32 mission, u32 period_us, u16 stale_max, u16 0, u32 boot_mode, u32 image_len, u32 image_crc\n"
-        "BOOT_ACK 13 (8+4+8n): i32 rc, u32 reason, u32 n, n x (i32 min, i32 max)\n"
+        "BOOT_ACK 13 (12+4+8n): i32 rc, u32 reason, u32 lim_gen, u32 n, n x (i32 min, i32 max)\n"
         "LIMITS 14 (4+8n): u32 n, n x (i32 min, i32 max)\n";
     return fx_crc32(0u, (const uint8_t *)pil_layout, sizeof(pil_layout) - 1u);
 }
@@ -89,6 +89,7 @@ void fsw_pil_wr_cmd(fsw_wr_t *w, const fsw_pil_cmd_t *c)
     fsw_wr_u32(w, c->health);
     fsw_wr_u32(w, c->n_act);
     fsw_wr_i32n(w, c->act_cnt, FSW_ACT_MAX);
+    fsw_wr_u32(w, c->lim_gen);
 }
 
 bool fsw_pil_rd_cmd(fsw_rd_t *r, fsw_pil_cmd_t *c)
@@ -98,6 +99,7 @@ bool fsw_pil_rd_cmd(fsw_rd_t *r, fsw_pil_cmd_t *c)
     c->health = fsw_rd_u32(r);
     c->n_act = fsw_rd_u32(r);
     fsw_rd_i32n(r, c->act_cnt, FSW_ACT_MAX);
+    c->lim_gen = fsw_rd_u32(r);
     return (!r->err) && (c->n_act <= FSW_ACT_MAX);
 }
 
@@ -346,8 +348,8 @@ static void board_error(fsw_pil_board_t *b, uint16_t code, uint8_t type, uint32_
     fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
     fsw_pil_wr_error(&w, &e);
     fx_cnt_inc(&b->st.errors);
-    b->tx_seq++;
-    board_queue(b, (uint8_t)FSW_LINK_T_ERROR, b->tx_seq, w.pos, false);
+    /* the offending frame's seq (for a step's TLM, the SENSOR's), so the host can tie it to its request */
+    board_queue(b, (uint8_t)FSW_LINK_T_ERROR, b->dec.frame.seq, w.pos, false);
 }
 
 static void board_hello(fsw_pil_board_t *b)
@@ -393,28 +395,56 @@ void fsw_pil_board_init(fsw_pil_board_t *b, uint16_t board_id, uint32_t build_id
     b->tx_len = 0u;
     b->cache_len = 0u;
     b->tbl_acc_seen = 0u;
+    b->lim_gen = 0u;
     b->build_id = build_id;
     b->board_id = board_id;
     b->last_seq = 0u;
     b->tx_seq = 0u;
     b->booted = false;
     b->have_last = false;
+    b->ack_len = 0u;
+    b->ack_seq = 0u;
+    b->have_ack = false;
     board_hello(b);
 }
 
-/* TABLE_CHUNK: before BOOT it stages the boot image (in order, from offset 0); after, an upload. */
+/* Queues a TABLE_ACK (from b->pay) and keeps its wire bytes for a re-sent chunk of the same seq. */
+static void board_queue_ack(fsw_pil_board_t *b, uint16_t seq, uint32_t len)
+{
+    const uint32_t start = b->tx_len;
+    board_queue(b, (uint8_t)FSW_LINK_T_TABLE_ACK, seq, len, false);
+    if ((b->tx_len - start) <= FSW_PIL_ACK_WIRE) {
+        uint32_t i;
+        for (i = 0u; i < (b->tx_len - start); i++) {
+            b->ack_wire[i] = b->tx[start + i];
+        }
+        b->ack_len = b->tx_len - start;
+        b->ack_seq = seq;
+        b->have_ack = true;
+    }
+}
+
+/* TABLE_CHUNK: before BOOT it stages the boot image (in order, from offset 0); after, an upload.
+   A chunk with the seq of the last one answered is a re-send (its ack was lost): the same ack
+   again, the chunk not applied twice (an upload's last chunk applied twice would be refused BUSY). */
 static void board_chunk(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
 {
     fsw_table_chunk_t c;
     fsw_pil_ack_t a;
     fsw_wr_t w;
-    if (!fsw_pil_rd_chunk(r, &c)) {
+    if (b->have_ack && (seq == b->ack_seq)) {
+        uint32_t i;
+        for (i = 0u; (i < b->ack_len) && ((b->tx_len + i) < FSW_PIL_TX_CAP); i++) {
+            b->tx[b->tx_len + i] = b->ack_wire[i];
+        }
+        b->tx_len += i;
+    } else if (!fsw_pil_rd_chunk(r, &c)) {
         board_error(b, (uint16_t)FSW_PIL_E_LEN, (uint8_t)FSW_LINK_T_TABLE_CHUNK, r->len);
     } else if (b->booted) {
         fsw_pil_table_chunk(&b->fsw, &c, &a);
         fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
         fsw_pil_wr_ack(&w, &a);
-        board_queue(b, (uint8_t)FSW_LINK_T_TABLE_ACK, seq, w.pos, false);
+        board_queue_ack(b, seq, w.pos);
     } else {
         /* Chunks stage in order. The host re-sends a chunk whose ack it lost; a chunk at offset 0
            restarts the staging, and anything else out of order is refused (the host starts over). */
@@ -442,7 +472,7 @@ static void board_chunk(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
             a.result = (uint16_t)((b->stage_got == c.total_len) ? FSW_PIL_ACK_ACCEPTED : FSW_PIL_ACK_PARTIAL);
             fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
             fsw_pil_wr_ack(&w, &a);
-            board_queue(b, (uint8_t)FSW_LINK_T_TABLE_ACK, seq, w.pos, false);
+            board_queue_ack(b, seq, w.pos);
         }
     }
 }
@@ -471,10 +501,12 @@ static void board_boot(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
             b->have_last = false;
             b->cache_len = 0u;
             b->tbl_acc_seen = b->fsw.tlm.n_tbl_acc;
+            b->lim_gen = 0u;
         }
         fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
         fsw_wr_i32(&w, rc);
         fsw_wr_u32(&w, reason);
+        fsw_wr_u32(&w, b->lim_gen);
         if (b->booted && (rc >= 0)) {
             board_wr_ranges(b, &w);
         } else {
@@ -528,6 +560,14 @@ static fsw_pil_rx_t board_dispatch(fsw_pil_board_t *b)
         board_boot(b, &r, fr->seq);
         break;
     case FSW_LINK_T_HELLO:
+        /* A host that says HELLO starts a new session (it may have restarted while the board
+           flew): forget the boot, the staging and the caches, so its boot image cannot land in
+           an upload of the old session. */
+        b->booted = false;
+        b->have_last = false;
+        b->have_ack = false;
+        b->stage_got = 0u;
+        b->cache_len = 0u;
         board_hello(b);
         break;
     case FSW_LINK_T_PING:
@@ -551,12 +591,13 @@ static fsw_pil_rx_t board_dispatch(fsw_pil_board_t *b)
     case FSW_LINK_T_MODE_CMD: {
         fsw_rd_t m;
         fsw_rd_init(&m, fr->payload, fr->len);
-        if ((fr->len == 4u) && (fsw_rd_u32(&m) == FSW_PIL_MODE_END)) {
+        const uint32_t op = fsw_rd_u32(&m);
+        if ((fr->len == 4u) && ((op == FSW_PIL_MODE_END) || (op == FSW_PIL_MODE_RESET))) {
             for (i = 0u; i < fr->len; i++) {
                 b->pay[i] = fr->payload[i];
             }
             board_queue(b, (uint8_t)FSW_LINK_T_MODE_CMD, fr->seq, fr->len, false);
-            act = FSW_PIL_RX_END;
+            act = (op == FSW_PIL_MODE_END) ? FSW_PIL_RX_END : FSW_PIL_RX_RESET;
         } else {
             board_error(b, (uint16_t)FSW_PIL_E_FIELD, (uint8_t)FSW_LINK_T_MODE_CMD, fr->len);
         }
@@ -601,6 +642,7 @@ void fsw_pil_board_finish(fsw_pil_board_t *b, uint32_t insn)
     b->cache_len = 0u;
     if (b->fsw.tlm.n_tbl_acc != b->tbl_acc_seen) {
         b->tbl_acc_seen = b->fsw.tlm.n_tbl_acc;
+        b->lim_gen++;
         fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
         board_wr_ranges(b, &w);
         board_queue(b, (uint8_t)FSW_LINK_T_LIMITS, b->last_seq, w.pos, true);
@@ -612,6 +654,7 @@ void fsw_pil_board_finish(fsw_pil_board_t *b, uint32_t insn)
     for (i = 0u; i < FSW_ACT_MAX; i++) {
         c.act_cnt[i] = (i < c.n_act) ? b->out.act_cnt[i] : 0;
     }
+    c.lim_gen = b->lim_gen;
     fsw_wr_init(&w, b->pay, FSW_LINK_MAX_PAYLOAD);
     fsw_pil_wr_cmd(&w, &c);
     board_queue(b, (uint8_t)FSW_LINK_T_CMD, b->last_seq, w.pos, true);

@@ -8,7 +8,8 @@
  * loop feeds every UART byte to fsw_pil_board_rx() and sends whatever it queues in b->tx.
  *
  * Session (host = the bridge's `pil` backend, board = this code on the target):
- *   board            sends HELLO at start (and again on a host HELLO, whose payload is empty)
+ *   board            sends HELLO at start (and again on a host HELLO, whose payload is empty, which
+ *                    also starts a new session: not booted, staging and caches forgotten)
  *   host -> board    TABLE_CHUNK*  the boot image, staged in order (TABLE_ACK PARTIAL / ACCEPTED)
  *   host -> board    BOOT          the executive's configuration and the staged image's length
  *                                  and CRC: fsw_init; BOOT_ACK carries its verdict and the
@@ -22,10 +23,14 @@
  *   host -> board    PING          -> PONG with the same payload
  *   host -> board    MODE_CMD END  -> MODE_CMD echoed, then the board ends the session (QEMU: exit 0
  *                                  after the stack-canary check; a real board resets)
+ *   host -> board    MODE_CMD RESET-> MODE_CMD echoed, then the board resets (fault injection: the
+ *                                  host must detect the restarted board by its unsolicited HELLO)
  * The board applies the bridge's sequence rules (spec 00 §5.2) to SENSOR's link seq (k mod 2^16):
  * seq == last -> the cached replies of step last again, without stepping (a host retransmission
- * after a lost CMD/TLM); seq newer -> step; seq older -> dropped and counted (stale). Anything the
- * board cannot take is answered with ERROR (code, offending type, detail) and counted; the
+ * after a lost CMD/TLM); seq newer -> step; seq older -> dropped and counted (stale). A TABLE_CHUNK
+ * with the seq of the last one answered gets the same TABLE_ACK again, not applied twice. Anything
+ * the board cannot take is answered with ERROR (code, offending type, detail; the offending
+ * frame's seq) and counted; the
  * executive and the session keep running on their last good state.
  *
  * No heap, no globals: fsw_pil_board_t is the caller's (the board image holds one statically;
@@ -53,14 +58,14 @@
 /* Payload sizes (bytes). */
 #define FSW_PIL_HELLO_BYTES       16u
 #define FSW_PIL_SENSOR_BYTES     148u
-#define FSW_PIL_CMD_BYTES         84u
+#define FSW_PIL_CMD_BYTES         88u
 #define FSW_PIL_TLM_HEAD_BYTES     8u   /* insn, layout; the encoded telemetry follows */
 #define FSW_PIL_TLM_MAX          (FSW_LINK_MAX_PAYLOAD - FSW_PIL_TLM_HEAD_BYTES)   /* 504 */
 #define FSW_PIL_CHUNK_HEAD_BYTES  16u   /* + n data bytes */
 #define FSW_PIL_ACK_BYTES         16u
 #define FSW_PIL_BOOT_BYTES        24u
 #define FSW_PIL_RANGES_HEAD_BYTES  4u   /* n, then n x (min, max) */
-#define FSW_PIL_BOOT_ACK_HEAD_BYTES 8u  /* rc, reason, then the ranges */
+#define FSW_PIL_BOOT_ACK_HEAD_BYTES 12u /* rc, reason, limits generation, then the ranges */
 #define FSW_PIL_STATS_BYTES       84u
 #define FSW_PIL_PING_MAX          32u
 #define FSW_PIL_ERROR_BYTES        8u
@@ -86,13 +91,17 @@
 void fsw_pil_wr_sensor(fsw_wr_t *w, const fsw_in_t *in);
 bool fsw_pil_rd_sensor(fsw_rd_t *r, fsw_in_t *in);   /* false: n_counts > FSW_IN_MAX or short */
 
-/* CMD: seq (i64), mode, health, n_act, act_cnt[FSW_ACT_MAX]. */
+/* CMD: seq (i64), mode, health, n_act, act_cnt[FSW_ACT_MAX], lim_gen. lim_gen counts the channel-range
+   changes the board has reported (BOOT_ACK carries its value at boot): a CMD whose lim_gen moved
+   without its LIMITS frame tells the host that frame was lost, and it asks for the step's replies
+   again (the board re-sends LIMITS with them). */
 typedef struct {
     int64_t  seq;
     uint32_t mode;
     uint32_t health;
     uint32_t n_act;
     int32_t  act_cnt[FSW_ACT_MAX];
+    uint32_t lim_gen;
 } fsw_pil_cmd_t;
 void fsw_pil_wr_cmd(fsw_wr_t *w, const fsw_pil_cmd_t *c);
 bool fsw_pil_rd_cmd(fsw_rd_t *r, fsw_pil_cmd_t *c);  /* false: n_act > FSW_ACT_MAX or short */
@@ -178,16 +187,19 @@ uint32_t fsw_pil_missions(void);
 
 /* Queued output: the replies to the last input, sent by the caller (fsw_pil_board_sent). */
 #define FSW_PIL_TX_CAP (4u * FSW_LINK_MAX_WIRE)
+#define FSW_PIL_ACK_WIRE 32u   /* a TABLE_ACK frame on the wire: 26-byte body, COBS, delimiter */
 
 typedef enum {
     FSW_PIL_RX_NONE = 0,     /* nothing to do (byte absorbed) */
     FSW_PIL_RX_SEND = 1,     /* replies queued in b->tx[0 .. b->tx_len): send them */
     FSW_PIL_RX_STEP = 2,     /* a SENSOR to step: call fsw_pil_board_step, then _finish (then send) */
-    FSW_PIL_RX_END = 3       /* MODE_CMD END: send the queued ack, then end the session (exit/reset) */
+    FSW_PIL_RX_END = 3,      /* MODE_CMD END: send the queued ack, then end the session (exit/reset) */
+    FSW_PIL_RX_RESET = 4     /* MODE_CMD RESET: send the queued ack, then reset the board */
 } fsw_pil_rx_t;
 
 /* MODE_CMD payload: u32 op. Flight modes never ride here (they are fsw_in_t.mode_cmd in SENSOR). */
 #define FSW_PIL_MODE_END 1u   /* end of run: the board acks (MODE_CMD echoed) and ends the session */
+#define FSW_PIL_MODE_RESET 2u /* fault injection: the board acks, then resets (a board reset mid-run, spec 00 §8) */
 
 typedef struct {
     fsw_t            fsw;                          /* the executive and its mission */
@@ -199,16 +211,21 @@ typedef struct {
     uint8_t          pay[FSW_LINK_MAX_PAYLOAD];    /* scratch payload */
     uint8_t          tx[FSW_PIL_TX_CAP];           /* queued frames */
     uint8_t          cache[FSW_PIL_TX_CAP];        /* step last's replies, re-sent on a duplicate */
+    uint8_t          ack_wire[FSW_PIL_ACK_WIRE];   /* the last TABLE_ACK, re-sent on a re-sent chunk */
     uint32_t         stage_got;                    /* contiguous bytes staged */
     uint32_t         tx_len;
     uint32_t         cache_len;
     uint32_t         tbl_acc_seen;                 /* n_tbl_acc when ranges were last sent */
+    uint32_t         lim_gen;                      /* LIMITS frames sent since boot (CMD.lim_gen) */
+    uint32_t         ack_len;
     uint32_t         build_id;
     uint16_t         board_id;
     uint16_t         last_seq;                     /* link seq of the last stepped SENSOR */
-    uint16_t         tx_seq;                       /* seq of board-initiated packets (HELLO, ERROR, ...) */
+    uint16_t         tx_seq;                       /* seq of board-initiated packets (HELLO) */
+    uint16_t         ack_seq;                      /* seq of the chunk ack_wire answers */
     bool             booted;                       /* a BOOT has run fsw_init (whatever its verdict) */
     bool             have_last;
+    bool             have_ack;
 } fsw_pil_board_t;
 
 /* Resets the session (not booted) and queues HELLO. */

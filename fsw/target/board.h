@@ -46,6 +46,8 @@ void board_exit_raw(uint32_t code) __attribute__((noreturn));
 void board_console_write(const char *s);   /* NUL-terminated, no newline added */
 void board_console_putc(char c);
 void board_console_hex(uint32_t v);         /* "0x%08x", no libc: also used on the fault path */
+/* System reset (SCB AIRCR SYSRESETREQ): the board starts again from its reset vector. Never returns. */
+void board_reset(void) __attribute__((noreturn));
 /* Host-supplied command line (qemu variant: "<elf> <args...>"); length, or -1 if none. */
 int32_t board_cmdline(char *buf, uint32_t len);
 

@@ -14,10 +14,10 @@
 #else
 #include "uart_cmsdk.h"
 #define BOARD_CONSOLE_BAUD 115200u
-#define SCB_AIRCR 0xE000ED0Cu
-#define SCB_AIRCR_SYSRESETREQ 0x05FA0004u
 static cmsdk_uart_t board_console_uart;   /* BSP state: console UART counters */
 #endif
+#define SCB_AIRCR 0xE000ED0Cu
+#define SCB_AIRCR_SYSRESETREQ 0x05FA0004u
 
 #define SYST_CSR 0xE000E010u
 #define SYST_RVR 0xE000E014u
@@ -30,6 +30,15 @@ void board_systick_start(void)
     *board_reg32(SYST_RVR) = BOARD_SYSTICK_MASK;
     *board_reg32(BOARD_SYST_CVR) = 0u;   /* any write clears the counter */
     *board_reg32(SYST_CSR) = SYST_CSR_CLKSOURCE | SYST_CSR_ENABLE;
+}
+
+void board_reset(void)
+{
+    *board_reg32(SCB_AIRCR) = SCB_AIRCR_SYSRESETREQ;
+    __asm__ volatile ("dsb" ::: "memory");
+    for (;;) {
+        /* the reset takes effect within a few cycles */
+    }
 }
 
 void board_console_hex(uint32_t v)
@@ -127,10 +136,7 @@ void board_exit_raw(uint32_t code)
     board_console_write("\n*** exit ");
     board_console_hex(code);
     board_console_write(", reset\n");
-    *board_reg32(SCB_AIRCR) = SCB_AIRCR_SYSRESETREQ;
-    __asm__ volatile ("dsb" ::: "memory");
-    for (;;) {
-    }
+    board_reset();
 }
 
 #endif

@@ -9,7 +9,8 @@
  * Instruction count: under QEMU -icount shift=3 one instruction is 8 ns of virtual time and the
  * MPS2 SysTick counts at 25 MHz, so one tick is 5 instructions; TLM carries ticks x 5 (the
  * bracket's own few instructions included, a resolution of 5). The UART waits lie outside the
- * bracket, so the count does not depend on host timing.
+ * bracket, and SysTick is restarted just before it (its phase reset), so the count does not depend
+ * on host timing.
  */
 #include "board.h"
 #include "uart_cmsdk.h"
@@ -48,6 +49,10 @@ int main(void)
         if (cmsdk_uart_try_getc(&pil_uart, &byte)) {
             const fsw_pil_rx_t act = fsw_pil_board_rx(&pil_board, byte);
             if (act == FSW_PIL_RX_STEP) {
+                /* Restarting SysTick resets its phase: without it the bracket's start falls anywhere
+                   in a 5-instruction tick, depending on how long the UART was polled, and the count
+                   varies by one tick between identical runs. */
+                board_systick_start();
                 const uint32_t t0 = board_systick_read();
                 fsw_pil_board_step(&pil_board);
                 const uint32_t t1 = board_systick_read();
@@ -57,6 +62,9 @@ int main(void)
                 done = !board_stack_canary_ok();
             } else if (act == FSW_PIL_RX_END) {
                 done = true;
+            } else if (act == FSW_PIL_RX_RESET) {
+                pil_send();        /* the ack first, then the reset the host asked for */
+                board_reset();
             } else {
                 /* NONE or SEND */
             }

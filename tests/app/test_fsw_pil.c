@@ -198,6 +198,7 @@ UT_TEST(payloads_have_their_layout_sizes_and_round_trip)
     c.mode = 2u;
     c.health = 0x80000001u;
     c.n_act = 2u;
+    c.lim_gen = 3u;
     for (i = 0u; i < FSW_ACT_MAX; i++) {
         c.act_cnt[i] = (int32_t)i - 8;
     }
@@ -209,6 +210,7 @@ UT_TEST(payloads_have_their_layout_sizes_and_round_trip)
     UT_EQ(c2.seq, -3);
     UT_UEQ(c2.health, 0x80000001u);
     UT_EQ(c2.act_cnt[15], 7);
+    UT_UEQ(c2.lim_gen, 3u);
 
     s.rx = g_hdec.st;
     s.steps = 1u;
@@ -411,6 +413,7 @@ static bool replies_match_twin(int64_t k)
     uint32_t n;
     bool ok = (g_nrx == 2u) && (g_rx[0].type == FSW_LINK_T_CMD) && (g_rx[1].type == FSW_LINK_T_TLM);
     c.seq = k;
+    c.lim_gen = g_b.lim_gen;
     c.mode = g_tout.mode;
     c.health = g_tout.health;
     c.n_act = g_tout.n_act;
@@ -522,12 +525,56 @@ UT_TEST(an_upload_while_flying_acks_like_the_twin_and_reports_new_limits)
         }
     }
     UT_TRUE(limits_seen);
+    UT_UEQ(g_b.lim_gen, 1u);
     UT_UEQ(g_b.fsw.tlm.tbl_revision, 9u);
     fsw_sensor_ranges(&g_twin, trng, &ntr);
     UT_UEQ(nr, ntr);
     UT_TRUE(nr >= 1u);
     UT_EQ(rng[0].min, trng[0].min);
     UT_EQ(rng[nr - 1u].max, trng[ntr - 1u].max);
+}
+
+UT_TEST(a_resent_chunk_gets_the_same_ack_and_a_host_hello_starts_a_new_session)
+{
+    obs_params_t p = OBS_TBL_50HZ_PHYS;
+    uint32_t n;
+    fsw_table_chunk_t ch;
+    fsw_wr_t w;
+    fsw_rd_t r;
+    fsw_pil_ack_t a1;
+    fsw_pil_ack_t a2;
+    uint32_t off;
+    uint32_t rej0;
+    boot_both();
+    n = obs_table_encode(&p, 11u, g_img, (uint32_t)sizeof(g_img));
+    rej0 = g_b.fsw.tlm.n_tbl_rej;
+    for (off = 0u; off < n; off += 200u) {
+        ch.table_id = (uint16_t)OBS_TBL_ID;
+        ch.revision = 11u;
+        ch.total_len = n;
+        ch.offset = off;
+        ch.n = ((n - off) < 200u) ? (n - off) : 200u;
+        ch.data = &g_img[off];
+        fsw_wr_init(&w, g_pay, sizeof g_pay);
+        fsw_pil_wr_chunk(&w, &ch);
+        (void)send((uint8_t)FSW_LINK_T_TABLE_CHUNK, (uint16_t)(700u + off), g_pay, w.pos);
+    }
+    fsw_rd_init(&r, g_rx[0].pay, g_rx[0].len);
+    UT_TRUE(fsw_pil_rd_ack(&r, &a1));
+    UT_UEQ(a1.result, FSW_PIL_ACK_ACCEPTED);
+    /* the last chunk again, same seq (its ack lost): the same ack, not applied (no BUSY refusal) */
+    (void)send((uint8_t)FSW_LINK_T_TABLE_CHUNK, (uint16_t)(700u + ch.offset), g_pay, w.pos);
+    UT_UEQ(g_nrx, 1u);
+    fsw_rd_init(&r, g_rx[0].pay, g_rx[0].len);
+    UT_TRUE(fsw_pil_rd_ack(&r, &a2));
+    UT_UEQ(a2.result, FSW_PIL_ACK_ACCEPTED);
+    UT_UEQ(g_b.fsw.tlm.n_tbl_rej, rej0);
+    /* a host HELLO: a new session (not booted, staging forgotten), answered with HELLO */
+    UT_TRUE(g_b.booted);
+    (void)send((uint8_t)FSW_LINK_T_HELLO, 900u, g_pay, 0u);
+    UT_UEQ(g_rx[0].type, FSW_LINK_T_HELLO);
+    UT_TRUE(!g_b.booted);
+    UT_UEQ(g_b.stage_got, 0u);
 }
 
 UT_TEST(link_stats_and_the_end_of_a_session)
@@ -547,9 +594,14 @@ UT_TEST(link_stats_and_the_end_of_a_session)
     UT_UEQ(s.boots, 1u);
     UT_UEQ(s.rx.err_cobs + s.rx.err_short, 1u);
     fsw_wr_init(&w, g_pay, sizeof g_pay);
-    fsw_wr_u32(&w, 2u);   /* not an op */
+    fsw_wr_u32(&w, 3u);   /* not an op */
     (void)send((uint8_t)FSW_LINK_T_MODE_CMD, 10u, g_pay, w.pos);
     UT_UEQ(g_rx[0].type, FSW_LINK_T_ERROR);
+    UT_UEQ(g_rx[0].seq, 10u);   /* ERROR carries the offending frame's seq */
+    fsw_wr_init(&w, g_pay, sizeof g_pay);
+    fsw_wr_u32(&w, FSW_PIL_MODE_RESET);
+    UT_TRUE(send((uint8_t)FSW_LINK_T_MODE_CMD, 12u, g_pay, w.pos) == FSW_PIL_RX_RESET);
+    UT_UEQ(g_rx[0].type, FSW_LINK_T_MODE_CMD);
     fsw_wr_init(&w, g_pay, sizeof g_pay);
     fsw_wr_u32(&w, FSW_PIL_MODE_END);
     UT_TRUE(send((uint8_t)FSW_LINK_T_MODE_CMD, 11u, g_pay, w.pos) == FSW_PIL_RX_END);
@@ -565,6 +617,7 @@ int main(void)
         UT_CASE(boot_staging_checks_length_crc_and_order),
         UT_CASE(steps_match_the_twin_and_duplicates_and_stale_frames_do_not_step),
         UT_CASE(an_upload_while_flying_acks_like_the_twin_and_reports_new_limits),
+        UT_CASE(a_resent_chunk_gets_the_same_ack_and_a_host_hello_starts_a_new_session),
         UT_CASE(link_stats_and_the_end_of_a_session),
     };
     return UT_RUN("fsw_pil", cases);
