@@ -12,6 +12,55 @@ std::uint32_t sat_u32(std::int32_t v) { return (v < 0) ? 0u : static_cast<std::u
 
 }  // namespace
 
+bool hold_command(FswPending &p, const FswCommand &c)
+{
+    // The executive checks the target mode itself (refused ones are counted in its telemetry);
+    // here only a negative value, which has no uint32 meaning, is refused.
+    if (c.cmd == kCmdMode && c.args[0] >= 0) {
+        p.mode_cmd = static_cast<std::uint32_t>(c.args[0]);
+        return true;
+    }
+    // A telecommand carries its mission's namespace (FSW_TC_ID); the executive takes it or
+    // refuses and counts it (another mission's, unknown, or outside the mission mode).
+    if (c.cmd >= static_cast<std::int32_t>(1u << FSW_TC_NS_SHIFT)) {
+        p.tc = static_cast<std::uint32_t>(c.cmd);
+        for (std::size_t i = 0; i < FSW_TC_ARGS; ++i) { p.tc_arg[i] = c.args[i]; }
+        return true;
+    }
+    return false;
+}
+
+void set_host_counters(FswPending &p, const Counters &c)
+{
+    p.missed = sat_u32(c.missed);
+    p.rejected = sat_u32(rejected_total(c));
+}
+
+fsw_in_t make_fsw_in(const Frame &f, FswPending &p)
+{
+    fsw_in_t in{};
+    in.utime_us = f.utime;
+    in.seq = f.seq;
+    in.n_counts = (f.n_counts < 0) ? 0u
+                : ((f.n_counts > static_cast<std::int16_t>(FSW_IN_MAX)) ? FSW_IN_MAX
+                                                                         : static_cast<std::uint32_t>(f.n_counts));
+    for (std::size_t i = 0; i < FSW_IN_MAX; ++i) {
+        in.counts[i] = f.counts[i];
+        std::uint8_t st = 0u;
+        if ((f.status[i] & kStatusStale) != 0) { st = static_cast<std::uint8_t>(st | FSW_ST_STALE); }
+        if ((f.status[i] & kStatusSat) != 0) { st = static_cast<std::uint8_t>(st | FSW_ST_SAT); }
+        in.status[i] = st;
+    }
+    in.mode_cmd = p.mode_cmd;
+    p.mode_cmd = FSW_CMD_NONE;
+    in.tc = p.tc;
+    for (std::size_t i = 0; i < FSW_TC_ARGS; ++i) { in.tc_arg[i] = p.tc_arg[i]; p.tc_arg[i] = 0; }
+    p.tc = FSW_TC_NONE;
+    in.host_missed = p.missed;
+    in.host_rejected = p.rejected;
+    return in;
+}
+
 InProcessFswBackend::InProcessFswBackend(const fsw_cfg_t &cfg, std::vector<std::uint8_t> boot)
     : cfg_(cfg), boot_(std::move(boot)), f_(new fsw_t())
 {
@@ -54,35 +103,12 @@ bool InProcessFswBackend::limits_changed(SensorLimits &lim)
     return true;
 }
 
-void InProcessFswBackend::host_counters(const Counters &c)
-{
-    missed_ = sat_u32(c.missed);
-    rejected_ = sat_u32(rejected_total(c));
-}
+void InProcessFswBackend::host_counters(const Counters &c) { set_host_counters(pend_, c); }
 
 bool InProcessFswBackend::step(const Frame &f, StepOutput &out)
 {
     // A boot failure still steps: the executive is then in SAFE and commands safe values.
-    fsw_in_t in{};
-    in.utime_us = f.utime;
-    in.seq = f.seq;
-    in.n_counts = (f.n_counts < 0) ? 0u
-                : ((f.n_counts > static_cast<std::int16_t>(FSW_IN_MAX)) ? FSW_IN_MAX
-                                                                         : static_cast<std::uint32_t>(f.n_counts));
-    for (std::size_t i = 0; i < FSW_IN_MAX; ++i) {
-        in.counts[i] = f.counts[i];
-        std::uint8_t st = 0u;
-        if ((f.status[i] & kStatusStale) != 0) { st = static_cast<std::uint8_t>(st | FSW_ST_STALE); }
-        if ((f.status[i] & kStatusSat) != 0) { st = static_cast<std::uint8_t>(st | FSW_ST_SAT); }
-        in.status[i] = st;
-    }
-    in.mode_cmd = mode_cmd_;
-    mode_cmd_ = FSW_CMD_NONE;
-    in.tc = tc_;
-    for (std::size_t i = 0; i < FSW_TC_ARGS; ++i) { in.tc_arg[i] = tc_arg_[i]; tc_arg_[i] = 0; }
-    tc_ = FSW_TC_NONE;
-    in.host_missed = missed_;
-    in.host_rejected = rejected_;
+    const fsw_in_t in = make_fsw_in(f, pend_);
     fsw_step(f_.get(), &in, &out_);
 
     out = StepOutput{};
@@ -95,23 +121,7 @@ bool InProcessFswBackend::step(const Frame &f, StepOutput &out)
     return true;
 }
 
-bool InProcessFswBackend::command(const FswCommand &c)
-{
-    // The executive checks the target mode itself (refused ones are counted in its telemetry);
-    // here only a negative value, which has no uint32 meaning, is refused.
-    if (c.cmd == kCmdMode && c.args[0] >= 0) {
-        mode_cmd_ = static_cast<std::uint32_t>(c.args[0]);
-        return true;
-    }
-    // A telecommand carries its mission's namespace (FSW_TC_ID); the executive takes it or
-    // refuses and counts it (another mission's, unknown, or outside the mission mode).
-    if (c.cmd >= static_cast<std::int32_t>(1u << FSW_TC_NS_SHIFT)) {
-        tc_ = static_cast<std::uint32_t>(c.cmd);
-        for (std::size_t i = 0; i < FSW_TC_ARGS; ++i) { tc_arg_[i] = c.args[i]; }
-        return true;
-    }
-    return false;
-}
+bool InProcessFswBackend::command(const FswCommand &c) { return hold_command(pend_, c); }
 
 bool InProcessFswBackend::table_chunk(const TableChunk &c, TableAck &ack)
 {
@@ -119,7 +129,7 @@ bool InProcessFswBackend::table_chunk(const TableChunk &c, TableAck &ack)
     ack.table_id = c.table_id;
     ack.revision = c.revision;
     if (c.table_id < 0 || c.table_id > 0xFFFF || c.revision < 0 || c.total_len < 0 || c.offset < 0 ||
-        c.n < 0 || static_cast<std::size_t>(c.n) > kMaxChunk) {
+        c.n <= 0 || static_cast<std::size_t>(c.n) > kMaxChunk) {
         ack.result = kTableRejected;
         ack.reason = static_cast<std::int32_t>(FSW_TBL_R_CHUNK_LEN);
         return true;

@@ -22,6 +22,27 @@ extern "C" {
 
 namespace bridge {
 
+// The step inputs a backend holds between steps: a mode command and a telecommand for the next
+// step only, and the bridge's counters the flight software copies into its telemetry. Every
+// backend that hands fsw_in_t to the executive (in this process, or over the PIL link) goes
+// through the three functions below, so a frame means the same fsw_in_t whatever runs it.
+struct FswPending {
+    std::uint32_t mode_cmd = FSW_CMD_NONE;
+    std::uint32_t tc = FSW_TC_NONE;
+    std::int32_t tc_arg[FSW_TC_ARGS] = {};
+    std::uint32_t missed = 0;
+    std::uint32_t rejected = 0;
+};
+
+// Backend::command's rule: a mode command (non-negative target) or a namespaced telecommand is
+// held for the next step (true); anything else is refused (false). A later one replaces it.
+bool hold_command(FswPending &p, const FswCommand &c);
+// Backend::host_counters: missed and the rejection total, clamped to uint32.
+void set_host_counters(FswPending &p, const Counters &c);
+// Frame k as the executive's input: counts, STALE/SAT bits as FSW_ST_*, n_counts clamped to
+// [0, FSW_IN_MAX], and p's held commands, which this step consumes.
+fsw_in_t make_fsw_in(const Frame &f, FswPending &p);
+
 class InProcessFswBackend final : public Backend {
 public:
     // cfg: the executive's configuration (mission, period, stale_max, boot mode); boot: the
@@ -50,10 +71,7 @@ private:
     std::vector<std::uint8_t> boot_;
     std::unique_ptr<fsw_t> f_;          // tens of KiB: on the heap of the host process
     fsw_out_t out_{};
-    std::uint32_t missed_ = 0, rejected_ = 0;
-    std::uint32_t mode_cmd_ = FSW_CMD_NONE;   // for the next step only
-    std::uint32_t tc_ = FSW_TC_NONE;          // telecommand for the next step only
-    std::int32_t tc_arg_[FSW_TC_ARGS] = {};
+    FswPending pend_;                         // held commands and host counters
     fsw_rc_t boot_rc_ = FSW_ERR_ARG;
     std::uint32_t lim_tbl_acc_ = 0;           // n_tbl_acc when the limits were last reported
 };
