@@ -97,9 +97,13 @@ else()
   fsw_lint_test(lint_nm_no_mutable_globals ${FSW_PYTHON} ${CMAKE_SOURCE_DIR}/tools/check_nm.py
                 --nm ${CMAKE_NM} --check globals ${_excl} $<TARGET_FILE:fsw>)
   fsw_stack_proof(lint_stack_sum LIB fsw)
-  # Board images: fsw_stack_proof(... ROOTS board_reset_handler board_fault_entry) once the PIL
-  # image exists. fx_bench is not registered: its kernel table is called through function
-  # pointers (fine for a benchmark, an unresolved callee for stack_sum).
+  # The PIL board image: reset handler -> main -> the session -> fsw_step, and the fault path. Its
+  # worst path is the static bound the pil tests compare the painted high-water mark with
+  # (tests/pil/check_stack.py). fx_bench is not registered: its kernel table is called through
+  # function pointers (fine for a benchmark, an unresolved callee for stack_sum).
+  fsw_stack_proof(lint_stack_sum_pil LIB fsw OBJECTS fsw_board_qemu_obj DIRS fsw_pil
+                  ROOTS board_reset_handler board_fault_report)
+  set_tests_properties(lint_stack_sum_pil PROPERTIES FIXTURES_SETUP pil_stack_static)
 endif()
 
 add_subdirectory(${CMAKE_SOURCE_DIR}/tests/proofs ${CMAKE_BINARY_DIR}/tests/proofs)

@@ -42,7 +42,7 @@ void deliver_commands(const sim::Scenario &scn, std::size_t &next, std::uint64_t
 
 }  // namespace
 
-InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra, bool progress)
+InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra, bool progress, PilRun *pil)
 {
     if (scn.faults.any()) {
         throw std::invalid_argument("the batch driver flies fault-free scenarios only (faults act on the transport): "
@@ -53,7 +53,14 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
     // acks reach the metrics (run_uploads checks every image first: a refused one flies nothing).
     const std::vector<Upload> uploads = run_uploads(scn, extra);
     std::vector<bool> sent(uploads.size(), false);
-    std::unique_ptr<bridge::InProcessFswBackend> be = make_fixed_backend(scn);
+    // SIL: the executive in this process; PIL: the same executive on the board behind the link.
+    // The bridge core, its limits (the run's table, checked by the host's loader) and everything
+    // around them are the same, so the two runs' streams compare byte for byte.
+    std::unique_ptr<bridge::InProcessFswBackend> fixed;
+    if (pil == nullptr) {
+        fixed = make_fixed_backend(scn);
+    }
+    bridge::Backend *be = (pil != nullptr) ? static_cast<bridge::Backend *>(&pil->backend()) : fixed.get();
     bridge::Bridge core(*be, run_limits(scn));
     MetricsTap mt(nullptr, scn);
     std::unique_ptr<sim::Plant> plant = sim::make_plant(scn);
@@ -81,6 +88,9 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
             }
         }
         deliver_commands(scn, next_cmd, k, utime, static_cast<double>(utime) * 1e-6, core, out);
+        if (pil != nullptr) {
+            pil->before_step(k);
+        }
         const sim::SensorFrame f = plant->sense();
         int len = encode_truth(*plant, k, buf);
         if (len > 0) {
@@ -126,6 +136,11 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
             ps.missed_run_max = (missed_run > ps.missed_run_max) ? missed_run : ps.missed_run_max;
             core.set_missed(static_cast<std::int32_t>(ps.missed > 0x7FFFFFFFu ? 0x7FFFFFFFu : ps.missed));
         }
+        if (pil != nullptr && pil->backend().link_down()) {
+            ps.reason = "PIL link down at step " + std::to_string(k);
+            res.board_exit = 1;
+            break;
+        }
         const sim::RunState st = plant->propagate();
         ++ps.steps;
         if (progress && ((k + 1) % 1000000u == 0u || k + 1 == n)) {
@@ -150,6 +165,10 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
     mt.summary(res.summary, &res.bridge);
     res.summary.add("wall_s", res.wall_s, "%g");
     res.summary.add("steps_per_s", res.wall_s > 0.0 ? static_cast<double>(ps.steps) / res.wall_s : 0.0, "%g");
+    if (pil != nullptr) {
+        const int rc = pil->finish(res.summary);
+        res.board_exit = (res.board_exit != 0) ? res.board_exit : rc;
+    }
     return res;
 }
 

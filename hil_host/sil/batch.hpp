@@ -12,6 +12,7 @@
 #ifndef HIL_SIL_BATCH_HPP
 #define HIL_SIL_BATCH_HPP
 
+#include "pil_run.hpp"
 #include "sil_run.hpp"
 
 namespace sil {
@@ -19,7 +20,10 @@ namespace sil {
 // The result has the shape of run_inproc's: plant summary, core and mission metrics, bridge
 // counters, summary keys (transport "batch"), wall time.
 // extra: --upload images, after the scenario's table file (if any).
-InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra = {}, bool progress = false);
+// pil: fly the flight software on that board instead of in this process (pil_run.hpp); the
+// result's board_exit is then the board's verdict (PilRun::finish; 1 when the link went down).
+InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra = {}, bool progress = false,
+                       PilRun *pil = nullptr);
 
 }  // namespace sil
 

@@ -2,6 +2,10 @@
 //
 //   sil run    --scenario F [--url memq://|udpm://...] [--log F] [--summary F] [--summary-json F]
 //              [--upload IMG@T]... [--progress] [--fsw fixed|ref|...] [--determinism-check] [--batch]
+//              [--duration S] [--pil ELF [--pil-machine M] | --pil-serial DEV [--pil-baud N] | --pil-loopback]
+//              [--compare-sil] [--pil-insn CSV] [--pil-dir D] [--pil-timeout-ms N]
+//              a board run: the batch driver with the flight software on the board (hil_host/pil);
+//              --compare-sil flies SIL first and requires byte-identical streams (exit 4 otherwise)
 //              --batch: no transport (batch.hpp): the same plant, packets, bridge core, fsw_step and
 //              metrics without LCM, for long runs; fault-free scenarios (table files and uploads too)
 //              plant + bridge (fixed-point flight code, or the mission's double reference) + log
@@ -16,11 +20,12 @@
 // Exit (README "sil run: the command-line contract"):
 //   0  run completed in control
 //   1  error: the scenario does not load or its table is refused (nothing flown), or the summary
-//      could not be written after the run
+//      could not be written after the run, or a board run failed (link down, board fault or canary)
 //   2  usage: a bad option or option value, named on stderr; nothing flown
 //   3  LOSS OF CONTROL: the run flew, the plant diverged or missed more consecutive commands than
 //      the scenario's deadline covers; the summary (written) says why (sil_run.hpp loss_of_control)
-//   4  --determinism-check: the two flights' command/telemetry streams differ
+//   4  --determinism-check: the two flights' command/telemetry streams differ; --compare-sil: the
+//      board's differ from SIL's
 //   77 lcm_create failed (no multicast on loopback)
 #include "fsw_cli.hpp"
 
@@ -265,14 +270,54 @@ void progress_line(sil::PlantNode &pn, const char *who)
 
 }  // namespace
 
+// --pil-faults drop=P,flip=P,trunc=P,seed=N: per-frame probabilities (fractions) to ppm.
+void parse_pil_faults(const std::string &spec, sil::PilRunOptions &o)
+{
+    std::size_t pos = 0;
+    while (pos < spec.size()) {
+        std::size_t end = spec.find(',', pos);
+        end = (end == std::string::npos) ? spec.size() : end;
+        const std::string item = spec.substr(pos, end - pos);
+        const std::size_t eq = item.find('=');
+        const std::string k = item.substr(0, eq);
+        const std::string v = (eq == std::string::npos) ? std::string() : item.substr(eq + 1);
+        char *stop = nullptr;
+        const double x = std::strtod(v.c_str(), &stop);
+        if (eq == std::string::npos || v.empty() || stop == nullptr || *stop != '\0' || !(x >= 0.0)) {
+            throw UsageError("--pil-faults " + spec + ": '" + item + "' is not KEY=VALUE with a number >= 0");
+        }
+        if (k == "seed") {
+            o.fault_seed = static_cast<std::uint64_t>(x);
+            pos = end + 1;
+            continue;
+        }
+        if (x > 1.0) {
+            throw UsageError("--pil-faults " + spec + ": " + k + " is a fraction in [0, 1]");
+        }
+        const std::uint32_t ppm = static_cast<std::uint32_t>(x * 1e6 + 0.5);
+        if (k == "drop") {
+            o.drop_ppm = ppm;
+        } else if (k == "flip") {
+            o.flip_ppm = ppm;
+        } else if (k == "trunc") {
+            o.trunc_ppm = ppm;
+        } else {
+            throw UsageError("--pil-faults " + spec + ": unknown key '" + k + "' (drop, flip, trunc, seed)");
+        }
+        pos = end + 1;
+    }
+}
+
 int main(int argc, char **argv)
 try {
     CLI::App app{"sil — software-in-the-loop driver: plant, bridge and flight code over LCM"};
     app.require_subcommand(1);
     std::string scn_path, url, log, summary, summary_json, fsw = "fixed";
     std::vector<std::string> uploads;
-    bool progress = false, det_check = false, batch = false;
+    bool progress = false, det_check = false, batch = false, compare_sil = false;
     int ready_ms = 10000, idle_ms = 30000;
+    double duration = 0.0;
+    sil::PilRunOptions pil;
     const std::string url_help = "LCM URL, e.g. udpm://239.255.76.67:7667?ttl=0";
     const CLI::Validator non_empty(
         [](std::string &v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "", "NonEmpty");
@@ -292,6 +337,40 @@ try {
         ->disable_flag_override();
     run->add_flag("--batch", batch, "no transport: the in-process lock-step driver (same plant, packets, bridge, "
                                     "flight code, uploads and metrics; no LCM, no log, no faults)")
+        ->disable_flag_override();
+    run->add_option("--duration", duration, "fly only the first S seconds of the scenario (reduced runs)")
+        ->check(CLI::PositiveNumber);
+    // PIL / HIL (spec 00 §6, hil_host/pil): the batch driver with the flight software on a board.
+    run->add_option("--pil", pil.elf, "PIL: fly the flight software in this board image (fsw_pil.elf) under QEMU")
+        ->check(CLI::ExistingFile);
+    run->add_option("--pil-machine", pil.machine, "QEMU machine for --pil: mps2-an385 (M3, default) or mps2-an386 (M4)")
+        ->check(CLI::IsMember({"mps2-an385", "mps2-an386"}));
+    run->add_option("--pil-serial", pil.serial, "HIL: the board on this serial device (raw 8N1, e.g. ttyUSB0)")
+        ->check(non_empty);
+    run->add_option("--pil-baud", pil.baud, "HIL: the serial rate (default 921600)")->check(CLI::PositiveNumber);
+    run->add_flag("--pil-loopback", pil.loopback, "the board session compiled for the host, in this process (the "
+                                                  "link protocol without an emulator)")
+        ->disable_flag_override();
+    run->add_option("--pil-dir", pil.dir, "directory for QEMU's socket and logs (default: current)")->check(CLI::ExistingDirectory);
+    run->add_option("--pil-timeout-ms", pil.timeout_ms, "link: wait this long for a reply before re-sending")
+        ->check(CLI::PositiveNumber);
+    run->add_option("--pil-insn", pil.insn_csv, "write the board's per-step instruction counts (CSV)")->check(non_empty);
+    run->add_option("--pil-retx", pil.retx, "link: re-sends of one request before a step is missed (default 3)")
+        ->check(CLI::Range(0, 100));
+    run->add_option("--pil-down-after", pil.down_after, "link: consecutive missed steps that mean the link is down")
+        ->check(CLI::Range(1, 100000));
+    std::string pil_faults, pil_hash;
+    run->add_option("--pil-faults", pil_faults, "faults on the link's byte stream, per frame, both ways: "
+                                                "drop=P,flip=P,trunc=P,seed=N (P a fraction, e.g. 0.05)")
+        ->check(non_empty);
+    run->add_option("--pil-reset-at", pil.reset_at, "fault injection: reset the board before step K")
+        ->check(CLI::NonNegativeNumber);
+    run->add_option("--pil-silent-at", pil.silent_at, "fault injection: the board falls silent at step K")
+        ->check(CLI::NonNegativeNumber);
+    run->add_option("--pil-layout-hash", pil_hash, "test hook: expect this layout hash (hex) from the board")
+        ->check(non_empty);
+    run->add_flag("--compare-sil", compare_sil, "with a board: fly the run in SIL first and require byte-identical "
+                                                "command and telemetry streams (exit 4 otherwise)")
         ->disable_flag_override();
 
     CLI::App *plant = app.add_subcommand("plant", "the plant node of a separate-process run");
@@ -335,7 +414,14 @@ try {
         if (*lg) {
             return logger(url, log, idle_ms);
         }
-        const sim::Scenario scn = sim::load_scenario(scn_path);
+        sim::Scenario scn = sim::load_scenario(scn_path);
+        if (duration > 0.0) {
+            if (duration > scn.duration_s) {
+                throw UsageError("--duration " + std::to_string(duration) + " s is longer than scenario '" + scn.name +
+                                 "' (" + std::to_string(scn.duration_s) + " s)");
+            }
+            scn.duration_s = duration;
+        }
         if (*ck) {
             (void)sil::run_uploads(scn, {});                   // a table file through the upload path
             (void)sil::make_fixed_backend(scn);                // the boot table through the loader
@@ -362,9 +448,48 @@ try {
                 throw UsageError("--batch: scenario '" + scn.name + "' has faults, which act on the transport; fly it "
                                  "without --batch");
             }
-            const sil::InprocResult r = batch ? sil::run_batch(scn, o.uploads, progress) : sil::run_inproc(scn, o);
+            parse_pil_faults(pil_faults, pil);
+            if (!pil_hash.empty()) {
+                pil.expect_hash_set = true;
+                pil.expect_hash = static_cast<std::uint32_t>(std::stoul(pil_hash, nullptr, 16));
+            }
+            const int n_boards = (pil.loopback ? 1 : 0) + (pil.elf.empty() ? 0 : 1) + (pil.serial.empty() ? 0 : 1);
+            if (n_boards > 1) {
+                throw UsageError("--pil, --pil-serial and --pil-loopback name one board each: give one");
+            }
+            if (pil.active() && (!url.empty() || !log.empty() || det_check || fsw != "fixed" || scn.faults.any())) {
+                throw UsageError("a board run (--pil, --pil-serial, --pil-loopback) flies the batch driver: no --url, "
+                                 "--log, --determinism-check, --fsw other than fixed, or transport faults");
+            }
+            if (compare_sil && !pil.active()) {
+                throw UsageError("--compare-sil needs a board (--pil, --pil-serial or --pil-loopback)");
+            }
+            sil::InprocResult r;
+            bool streams_differ = false;
+            if (pil.active()) {
+                sil::InprocResult ref;
+                if (compare_sil) {
+                    ref = sil::run_batch(scn, o.uploads, progress);
+                }
+                sil::PilRun board(scn, pil);
+                r = sil::run_batch(scn, o.uploads, progress, &board);
+                if (compare_sil) {
+                    streams_differ = ref.core.digest_cmd != r.core.digest_cmd || ref.core.digest_tlm != r.core.digest_tlm;
+                    r.summary.add_int("pil_vs_sil_same_streams", streams_differ ? 0 : 1);
+                }
+            } else {
+                r = batch ? sil::run_batch(scn, o.uploads, progress) : sil::run_inproc(scn, o);
+            }
             std::cout << r.summary.text();
             write_summary(r.summary, summary, summary_json);
+            if (r.board_exit != 0) {
+                std::fprintf(stderr, "sil: the board run failed (exit %d): see the pil_* summary keys\n", r.board_exit);
+                return kExitError;
+            }
+            if (streams_differ) {
+                std::fprintf(stderr, "sil: PIL and SIL command/telemetry streams differ\n");
+                return kExitNotDeterministic;
+            }
             if (!r.loss_of_control.empty()) {
                 std::fprintf(stderr, "sil: LOSS OF CONTROL: %s\n", r.loss_of_control.c_str());
                 return kExitLossOfControl;

@@ -52,6 +52,7 @@ struct InprocResult {
     host::Summary summary;            // plant, bridge, executive and mission keys
     std::string loss_of_control;      // empty: the run kept control (loss_of_control())
     bool determinism_failed = false;  // determinism_check: the two flights' streams differ
+    int board_exit = 0;               // PIL (run_batch with a board): the board's exit code, 1 on link down
     // The mission's metrics as its own type (host::ObsMetrics, host::ImpMetrics, ...).
     template <class T> const T &metrics() const { return dynamic_cast<const T &>(*mission); }
 };

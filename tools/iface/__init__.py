@@ -111,6 +111,9 @@ class Mission(object):
         self.id = int(entry["id"])
         self.mode = int(entry["mode"])
         self.run = [str(x) for x in entry.get("run", [])]   # scenarios of the main job (tools/run.sh)
+        # the PIL equivalence test's scenario and reduced duration (tests/pil), or None
+        pil = entry.get("pil")
+        self.pil = None if pil is None else (str(pil["scenario"]), float(pil["duration_s"]))
         self.iface_path = os.path.join(ROOT, "fsw", self.module, self.prefix + "_iface.py")
         self.iface = getattr(_load_py(self.iface_path, self.prefix + "_iface"), "MODULE")
         if self.iface.prefix != self.prefix or self.iface.module != self.module:

@@ -303,7 +303,8 @@ def cmake(ms):
         "set(FSW_MISSION_NAMES %s)" % " ".join(m.name for m in ms),
         "set(FSW_MISSION_MODULES %s)" % " ".join(m.module for m in ms),
         "set(FSW_MISSION_PREFIXES %s)" % " ".join(m.prefix for m in ms),
-        "set(FSW_MISSION_MODULES_ALL %s)" % " ".join(m.module for m in allm), ""])
+        "set(FSW_MISSION_MODULES_ALL %s)" % " ".join(m.module for m in allm),
+        "set(FSW_MISSION_PIL %s)" % " ".join("%s@%s@%g" % (m.name, m.pil[0], m.pil[1]) for m in ms if m.pil), ""])
 
 
 def main(names, out, host=True, with_cmake=False):
