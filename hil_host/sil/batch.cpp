@@ -1,5 +1,8 @@
 #include "batch.hpp"
 
+#include <cstring>
+#include <lcm/eventlog.h>
+
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -42,7 +45,8 @@ void deliver_commands(const sim::Scenario &scn, std::size_t &next, std::uint64_t
 
 }  // namespace
 
-InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra, bool progress, PilRun *pil)
+InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra, bool progress, PilRun *pil,
+                       const std::string &log_path)
 {
     if (scn.faults.any()) {
         throw std::invalid_argument("the batch driver flies fault-free scenarios only (faults act on the transport): "
@@ -65,6 +69,32 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
     MetricsTap mt(nullptr, scn);
     std::unique_ptr<sim::Plant> plant = sim::make_plant(scn);
     plant->reset(scn);
+    // The event log of a batch run: every message a memq run would carry (sensor frames included),
+    // timestamped with the simulation time, so tools.sil report reads it like any run's log.
+    std::unique_ptr<lcm_eventlog_t, void (*)(lcm_eventlog_t *)> elog(nullptr, lcm_eventlog_destroy);
+    if (!log_path.empty()) {
+        elog.reset(lcm_eventlog_create(log_path.c_str(), "w"));
+        if (!elog) {
+            throw std::runtime_error("cannot create LCM log '" + log_path + "'");
+        }
+    }
+    std::int64_t n_events = 0;
+    auto log_event = [&](const char *ch, const std::uint8_t *data, std::size_t n) {
+        if (elog) {
+            lcm_eventlog_event_t ev{};
+            ev.eventnum = n_events++;
+            ev.timestamp = plant->utime_us();
+            ev.channellen = static_cast<int32_t>(std::strlen(ch));
+            ev.datalen = static_cast<int32_t>(n);
+            ev.channel = const_cast<char *>(ch);
+            ev.data = const_cast<std::uint8_t *>(data);
+            (void)lcm_eventlog_write_event(elog.get(), &ev);
+        }
+    };
+    auto tap = [&](const char *ch, const std::uint8_t *data, std::size_t n) {
+        mt.feed(ch, data, n);
+        log_event(ch, data, n);
+    };
     std::vector<std::uint8_t> buf(4096), out(4096);
     InprocResult res;
     PlantSummary &ps = res.plant;
@@ -81,7 +111,7 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
                     bool bad = false;
                     const int na = table_upload_to_ack(core, m.data(), m.size(), out.data(), out.size(), &bad);
                     if (na > 0) {
-                        mt.feed(kChTblAck, out.data(), static_cast<std::size_t>(na));
+                        tap(kChTblAck, out.data(), static_cast<std::size_t>(na));
                     }
                 }
                 sent[i] = true;
@@ -94,12 +124,13 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
         const sim::SensorFrame f = plant->sense();
         int len = encode_truth(*plant, k, buf);
         if (len > 0) {
-            mt.feed(kChTruth, buf.data(), static_cast<std::size_t>(len));
+            tap(kChTruth, buf.data(), static_cast<std::size_t>(len));
         }
         len = encode_frame(scn, f, 0, buf);
         if (len < 0) {
             throw std::runtime_error("sensor_frame_v2_t encode failed");
         }
+        log_event(kChSensor, buf.data(), static_cast<std::size_t>(len));
         const bridge::Reply r = core.on_bytes(buf.data(), static_cast<std::size_t>(len));
         bool got = false;
         sim::ActuatorCmd cmd{};
@@ -108,7 +139,7 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
             bridge::to_lcm(r.cmd, m);
             const int nb = bridge::encode(m, out.data(), out.size());
             if (nb > 0) {
-                mt.feed(kChCmd, out.data(), static_cast<std::size_t>(nb));
+                tap(kChCmd, out.data(), static_cast<std::size_t>(nb));
                 if (m.seq >= 0 && static_cast<std::uint64_t>(m.seq) == k && m.n_counts >= 0 && m.n_counts <= 16) {
                     got = true;
                     cmd.seq = static_cast<std::uint32_t>(m.seq & 0xFFFFFFFF);
@@ -124,7 +155,7 @@ InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extr
             bridge::to_lcm(r.tlm, m);
             const int nb = bridge::encode(m, out.data(), out.size());
             if (nb > 0) {
-                mt.feed(kChTlm, out.data(), static_cast<std::size_t>(nb));
+                tap(kChTlm, out.data(), static_cast<std::size_t>(nb));
             }
         }
         if (got) {

@@ -22,8 +22,9 @@ namespace sil {
 // extra: --upload images, after the scenario's table file (if any).
 // pil: fly the flight software on that board instead of in this process (pil_run.hpp); the
 // result's board_exit is then the board's verdict (PilRun::finish; 1 when the link went down).
+// log_path: write the run's messages to this LCM event log (simulation-time timestamps).
 InprocResult run_batch(const sim::Scenario &scn, const std::vector<Upload> &extra = {}, bool progress = false,
-                       PilRun *pil = nullptr);
+                       PilRun *pil = nullptr, const std::string &log_path = std::string());
 
 }  // namespace sil
 

@@ -7,9 +7,9 @@
 //              a board run: the batch driver with the flight software on the board (hil_host/pil);
 //              --compare-sil flies SIL first and requires byte-identical streams (exit 4 otherwise)
 //              --batch: no transport (batch.hpp): the same plant, packets, bridge core, fsw_step and
-//              metrics without LCM, for long runs; fault-free scenarios (table files and uploads too)
-//              plant + bridge (fixed-point flight code, or the mission's double reference) + log
-//              tap in ONE process on one lcm_t.
+//              metrics without LCM, for long runs; fault-free scenarios (table files and uploads too);
+//              --log writes the event log a memq run would. Otherwise: plant + bridge (fixed-point
+//              flight code, or the mission's double reference) + log tap in ONE process on one lcm_t.
 //   sil plant  --scenario F --url udpm://... [--summary F] [--summary-json F] [--ready-timeout-ms N] [--progress]
 //   sil bridge --scenario F --url udpm://... [--idle-timeout-ms N]
 //   sil ping   --url udpm://...    one runner heartbeat on GNC_CTL (logger start-up handshake)
@@ -336,7 +336,7 @@ try {
                   "fly the run twice and compare the command/telemetry streams (the determinism verdict)")
         ->disable_flag_override();
     run->add_flag("--batch", batch, "no transport: the in-process lock-step driver (same plant, packets, bridge, "
-                                    "flight code, uploads and metrics; no LCM, no log, no faults)")
+                                    "flight code, uploads, metrics and --log; no LCM, no faults)")
         ->disable_flag_override();
     run->add_option("--duration", duration, "fly only the first S seconds of the scenario (reduced runs)")
         ->check(CLI::PositiveNumber);
@@ -440,8 +440,8 @@ try {
             check_run(scn, url, fsw, uploads, log, summary, summary_json, o);
             o.progress = progress;
             o.determinism_check = det_check;
-            if (batch && (!url.empty() || !log.empty() || det_check || fsw != "fixed")) {
-                throw UsageError("--batch flies without a transport: no --url, --log, --determinism-check "
+            if (batch && (!url.empty() || det_check || fsw != "fixed")) {
+                throw UsageError("--batch flies without a transport: no --url, --determinism-check "
                                  "or --fsw other than fixed");
             }
             if (batch && scn.faults.any()) {
@@ -457,9 +457,9 @@ try {
             if (n_boards > 1) {
                 throw UsageError("--pil, --pil-serial and --pil-loopback name one board each: give one");
             }
-            if (pil.active() && (!url.empty() || !log.empty() || det_check || fsw != "fixed" || scn.faults.any())) {
+            if (pil.active() && (!url.empty() || det_check || fsw != "fixed" || scn.faults.any())) {
                 throw UsageError("a board run (--pil, --pil-serial, --pil-loopback) flies the batch driver: no --url, "
-                                 "--log, --determinism-check, --fsw other than fixed, or transport faults");
+                                 "--determinism-check, --fsw other than fixed, or transport faults");
             }
             if (compare_sil && !pil.active()) {
                 throw UsageError("--compare-sil needs a board (--pil, --pil-serial or --pil-loopback)");
@@ -472,13 +472,13 @@ try {
                     ref = sil::run_batch(scn, o.uploads, progress);
                 }
                 sil::PilRun board(scn, pil);
-                r = sil::run_batch(scn, o.uploads, progress, &board);
+                r = sil::run_batch(scn, o.uploads, progress, &board, log);
                 if (compare_sil) {
                     streams_differ = ref.core.digest_cmd != r.core.digest_cmd || ref.core.digest_tlm != r.core.digest_tlm;
                     r.summary.add_int("pil_vs_sil_same_streams", streams_differ ? 0 : 1);
                 }
             } else {
-                r = batch ? sil::run_batch(scn, o.uploads, progress) : sil::run_inproc(scn, o);
+                r = batch ? sil::run_batch(scn, o.uploads, progress, nullptr, log) : sil::run_inproc(scn, o);
             }
             std::cout << r.summary.text();
             write_summary(r.summary, summary, summary_json);
