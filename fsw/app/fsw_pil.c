@@ -399,6 +399,7 @@ void fsw_pil_board_init(fsw_pil_board_t *b, uint16_t board_id, uint32_t build_id
     b->build_id = build_id;
     b->board_id = board_id;
     b->last_seq = 0u;
+    b->last_in_seq = 0;
     b->tx_seq = 0u;
     b->booted = false;
     b->have_last = false;
@@ -516,7 +517,9 @@ static void board_boot(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
     }
 }
 
-/* SENSOR: the bridge's sequence rules on the 16-bit link seq. */
+/* SENSOR: the bridge's sequence rules on the frame's own 64-bit seq (fsw_in_t.seq), not on the 16-bit
+   link seq: a genuine forward jump of 2^15 frames or more (the bridge follows one after its resync
+   rule) would look old in 16-bit serial arithmetic, and every later frame would be dropped. */
 static fsw_pil_rx_t board_sensor(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
 {
     fsw_pil_rx_t act = FSW_PIL_RX_SEND;
@@ -524,18 +527,19 @@ static fsw_pil_rx_t board_sensor(fsw_pil_board_t *b, fsw_rd_t *r, uint16_t seq)
         board_error(b, (uint16_t)FSW_PIL_E_LEN, (uint8_t)FSW_LINK_T_SENSOR, r->len);
     } else if (!b->booted) {
         board_error(b, (uint16_t)FSW_PIL_E_NOT_BOOTED, (uint8_t)FSW_LINK_T_SENSOR, 0u);
-    } else if (b->have_last && (seq == b->last_seq)) {
+    } else if (b->have_last && (b->in.seq == b->last_in_seq)) {
         uint32_t i;
         fx_cnt_inc(&b->st.dups);
         for (i = 0u; (i < b->cache_len) && ((b->tx_len + i) < FSW_PIL_TX_CAP); i++) {
             b->tx[b->tx_len + i] = b->cache[i];
         }
         b->tx_len += i;
-    } else if (b->have_last && (fsw_link_seq_diff(seq, b->last_seq) < 0)) {
+    } else if (b->have_last && (b->in.seq < b->last_in_seq)) {
         fx_cnt_inc(&b->st.stale);
         act = FSW_PIL_RX_NONE;
     } else {
         b->last_seq = seq;
+        b->last_in_seq = b->in.seq;
         b->have_last = true;
         act = FSW_PIL_RX_STEP;
     }

@@ -25,7 +25,8 @@
  *                                  after the stack-canary check; a real board resets)
  *   host -> board    MODE_CMD RESET-> MODE_CMD echoed, then the board resets (fault injection: the
  *                                  host must detect the restarted board by its unsolicited HELLO)
- * The board applies the bridge's sequence rules (spec 00 §5.2) to SENSOR's link seq (k mod 2^16):
+ * The board applies the bridge's sequence rules (spec 00 §5.2) to SENSOR's fsw_in_t.seq (the link seq,
+ * k mod 2^16, only ties replies to requests):
  * seq == last -> the cached replies of step last again, without stepping (a host retransmission
  * after a lost CMD/TLM); seq newer -> step; seq older -> dropped and counted (stale). A TABLE_CHUNK
  * with the seq of the last one answered gets the same TABLE_ACK again, not applied twice. Anything
@@ -204,6 +205,7 @@ typedef enum {
 typedef struct {
     fsw_t            fsw;                          /* the executive and its mission */
     fsw_in_t         in;                           /* the step's input (decoded SENSOR) */
+    int64_t          last_in_seq;                  /* fsw_in_t.seq of the last stepped SENSOR */
     fsw_out_t        out;
     fsw_link_dec_t   dec;
     fsw_pil_stats_t  st;

@@ -465,6 +465,19 @@ UT_TEST(steps_match_the_twin_and_duplicates_and_stale_frames_do_not_step)
     UT_UEQ(bad, 0u);
     UT_UEQ(g_steps, 200u);
     UT_UEQ(g_b.st.steps, 200u);
+    {
+        /* a genuine jump of 40 000 frames (the bridge followed it): stepped, although its link seq
+           is "older" in 16-bit serial arithmetic; the next frame after it too */
+        fsw_in_t in = input(200 + 40000);
+        UT_TRUE(send((uint8_t)FSW_LINK_T_SENSOR, (uint16_t)(200 + 40000), g_pay, wr_sensor(&in)) == FSW_PIL_RX_STEP);
+        fsw_step(&g_twin, &in, &g_tout);
+        UT_TRUE(replies_match_twin(200 + 40000));
+        in = input(200 + 40001);
+        UT_TRUE(send((uint8_t)FSW_LINK_T_SENSOR, (uint16_t)(200 + 40001), g_pay, wr_sensor(&in)) == FSW_PIL_RX_STEP);
+        fsw_step(&g_twin, &in, &g_tout);
+        UT_TRUE(replies_match_twin(200 + 40001));
+        g_steps -= 2u;
+    }
     UT_UEQ(g_b.st.dups, 5u);
     UT_UEQ(g_b.st.stale, 5u);
     UT_UEQ(g_b.st.insn_max, 1234u);
