@@ -3,7 +3,7 @@
  * for MPS2 AN385/AN386 (spec 00 §6.2).
  *
  * Every exception other than reset is unexpected in this polled design (no interrupt is ever
- * enabled), so all of them — the faults, SVCall, PendSV, SysTick and every IRQ — go to one
+ * taken: the PIL image enables UART0's RX interrupt only to end a WFI, with PRIMASK set), so all of them — the faults, SVCall, PendSV, SysTick and every IRQ — go to one
  * handler that reports and exits with BOARD_EXIT_FAULT.
  */
 #include "board.h"
