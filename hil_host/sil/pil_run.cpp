@@ -125,6 +125,12 @@ int PilRun::finish(host::Summary &s)
         s.add("pil_link_required_baud", need_baud, "%.0f");
         s.add_int("pil_link_baud", opt_.baud);
         s.add_int("pil_link_budget_ok", need_baud <= static_cast<double>(opt_.baud) ? 1 : 0);
+        if (need_baud > static_cast<double>(opt_.baud)) {
+            // Lock-step runs do not care (the plant waits), a real-time bench does: say it.
+            std::fprintf(stderr, "sil: link budget: %.0f bytes a step at %.0f Hz need %.0f baud (8N1), more than %d: "
+                                 "a real-time bench on this link would fall behind\n",
+                         bytes_per_step, 1.0 / period_s_, need_baud, opt_.baud);
+        }
     }
     if (bs) {
         const fsw_link_stats_t &r = bs->rx;
