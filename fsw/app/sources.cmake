@@ -4,6 +4,7 @@ list(APPEND FSW_SOURCES
   app/fsw_codec.c
   app/fsw_link.c
   app/fsw_pil.c
+  app/fsw_pil_board.c
   app/fsw_table.c
   app/fsw_exec.c
   app/fsw_tlm.c
