@@ -3,10 +3,11 @@
  * every configured mission behind the serial link on UART0, polled.
  *
  * Between bytes the core sleeps in WFI, woken by UART0's RX interrupt, which is enabled but never
- * taken (PRIMASK set: no handler, the vector table unchanged). Busy polling kept QEMU's vCPU from
- * yielding to the thread that delivers the next byte, one byte per turn: WFI made a 32-byte ping
- * round trip 6.4 x faster (5.5 -> 0.86 ms under -icount shift=3), and a real board idles instead of
- * spinning. The instruction counts are unchanged: WFI lies outside the bracket.
+ * taken (PRIMASK set: no handler, the vector table unchanged). Busy polling kept QEMU's vCPU busy
+ * while its main loop delivers the next byte, one byte per turn: with WFI a 32-byte ping round trip
+ * under -icount shift=3 is 1.7 x faster (5.4 -> 3.2 ms, both images measured alternately; the
+ * emulator's absolute rate varies with the host's load), and a real board idles instead of spinning.
+ * The instruction counts are unchanged: WFI lies outside the bracket.
  *
  * The session logic (boot from a host-sent configuration and image, sequence rules, duplicate
  * cache, payloads) is fsw/app/fsw_pil.c, the same code the host harness runs; this file is only
