@@ -77,13 +77,17 @@ static uint16_t apply_step(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, u
     return rly_kt_clamp((int32_t)kt + ((int32_t)a->sign * step), p, h);
 }
 
-/* The sign rule of §5.1 step 6 and a fresh magnitude, then the step. */
-static uint16_t learn_step(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint64_t s, bool late,
+/* The sign rule of §5.1 step 6 and a fresh magnitude, then the step; `up` (IMPROVED_UP's escape)
+   overrides the sign. */
+static uint16_t learn_step(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint64_t s, bool late, bool up,
                            rly_win_t *w, uint32_t *h)
 {
     int8_t rs = 1;
     uint32_t mag = draw(a, &rs);   /* drawn whatever the branch: the stream never depends on it */
-    if ((!late) || (p->learn_after_tmin != 0u)) {
+    if (up) {
+        a->sign = 1;
+        a->n_dec = 0u;
+    } else if ((!late) || (p->learn_after_tmin != 0u)) {
         if (s < a->s_prev) {
             a->n_dec = (a->n_dec < UINT32_MAX) ? (a->n_dec + 1u) : a->n_dec;
         } else if (a->n_dec >= (uint32_t)p->n_ignore) {
@@ -124,6 +128,12 @@ static uint16_t search(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint6
     bool small = ((uint64_t)p->delta0_den * diff) < ((uint64_t)p->delta0_num * s);
     int32_t gate = (int32_t)p->gate_dk * (int32_t)p->dk_q16;
     int32_t moved = (int32_t)kt - (int32_t)a->kt_hist[RLY_KT_HIST - 1u];
+    /* IMPROVED_UP's escape: a window mean above env_alarm (the sum test is exact: alarm < 2^32 and
+       win_ticks <= 2^21, so the product < 2^53) is worse than not adapting at all; on this plant that
+       happens only in the erratic zone at and below k_t0, under the valley, so the search steps up
+       and no settled trigger may freeze there (README "k_t adaptation"). */
+    bool up = (p->adapt_mode == RLY_ADAPT_IMPROVED_UP) &&
+              (s > ((uint64_t)p->env_alarm_q40 * (uint64_t)p->win_ticks));
     if ((p->count_before_tmin != 0u) || late) {
         a->n_small = small ? (a->n_small + 1u) : 0u;   /* bounded by the window count */
     }
@@ -131,7 +141,7 @@ static uint16_t search(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint6
         if (late && (a->n_small >= (uint32_t)p->n_small)) {
             freeze(a, w, RLY_EV_FREEZE_SETTLED);   /* for good: no step */
         } else {
-            next = learn_step(a, p, kt, s, late, w, h);
+            next = learn_step(a, p, kt, s, late, false, w, h);
         }
     } else if (late && (((uint64_t)p->cliff_den * s) > ((uint64_t)p->cliff_num * a->s_prev)) &&
                ((p->adapt_mode != RLY_ADAPT_IMPROVED_UP) || (a->d_last > 0))) {
@@ -141,7 +151,7 @@ static uint16_t search(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint6
         int32_t back = (int32_t)p->retreat_dk * (int32_t)p->dk_q16;
         next = rly_kt_clamp((int32_t)a->kt_hist[1] - ((int32_t)a->d_last * back), p, h);
         freeze(a, w, RLY_EV_FREEZE_CLIFF);
-    } else if (late && (a->n_small >= (uint32_t)p->n_small) && (moved < gate) && (moved > -gate)) {
+    } else if (late && (!up) && (a->n_small >= (uint32_t)p->n_small) && (moved < gate) && (moved > -gate)) {
         a->kt_probe[0] = kt;
         a->kt_probe[1] = rly_kt_clamp((int32_t)kt + (int32_t)p->dk_q16, p, h);
         a->kt_probe[2] = rly_kt_clamp((int32_t)kt - (int32_t)p->dk_q16, p, h);
@@ -151,7 +161,7 @@ static uint16_t search(rly_adapt_t *a, const rly_params_t *p, uint16_t kt, uint6
         w->event = RLY_EV_PROBE_START;
         next = a->kt_probe[0];
     } else {
-        next = learn_step(a, p, kt, s, late, w, h);
+        next = learn_step(a, p, kt, s, late, up, w, h);
     }
     return next;
 }

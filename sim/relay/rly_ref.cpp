@@ -943,6 +943,7 @@ WindowResult Adapt::window_end(std::uint64_t s_j, bool valid)
         const bool small = p_.delta0_den * diff < p_.delta0_num * s_j;    // den·S < 2^62 (§4.5)
         n_small_ = (small && (p_.count_before_tmin || after_tmin)) ? n_small_ + 1u : 0u;
         bool decided = false;
+        const bool escape = p_.mode == AdaptMode::IMPROVED_UP && s_j > p_.escape_s;
         if (after_tmin && p_.mode == AdaptMode::PAPER && n_small_ >= p_.n_small) {
             freeze(kt_);
             r.event = AdaptEvent::FREEZE_SETTLED;
@@ -956,7 +957,7 @@ WindowResult Adapt::window_end(std::uint64_t s_j, bool valid)
                 freeze(clamp_kt(static_cast<std::int64_t>(kt_prev) - d * back, &r.kt_clamped));
                 r.event = AdaptEvent::FREEZE_CLIFF;
                 decided = true;
-            } else if (n_small_ >= p_.n_small && j_ >= lag && lag < kt_hist_.size()) {
+            } else if (!escape && n_small_ >= p_.n_small && j_ >= lag && lag < kt_hist_.size()) {
                 const std::uint32_t kt_lag = kt_hist_[(j_ - lag) % kt_hist_.size()];
                 const std::uint32_t span = kt_ > kt_lag ? kt_ - kt_lag : kt_lag - kt_;
                 if (span < p_.gate_dk * p_.dk_q16) {
@@ -973,7 +974,10 @@ WindowResult Adapt::window_end(std::uint64_t s_j, bool valid)
         }
         if (!decided) {
             const bool learn = !after_tmin || p_.learn_after_tmin;
-            if (learn) {
+            if (escape) {
+                sign_ = 1;                   // out of the erratic zone, towards the valley
+                n_dec_ = 0u;
+            } else if (learn) {
                 if (s_j < s_prev_) {
                     ++n_dec_;
                 } else if (n_dec_ >= p_.n_ignore) {
@@ -983,7 +987,7 @@ WindowResult Adapt::window_end(std::uint64_t s_j, bool valid)
                     n_dec_ = 0u;
                 }
             }
-            draw_step(r, !learn);
+            draw_step(r, !learn && !escape);
         }
     } else if (phase_ == AdaptPhase::PROBE) {
         if (++probe_win_ > p_.probe_settle) {            // settle window(s), then the measured one

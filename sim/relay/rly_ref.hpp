@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace ref {
@@ -242,7 +243,8 @@ private:
 // ----------------------------------------------------------------------------------------------
 // Adaptation (§5) on integer window sums
 
-// IMPROVED_UP: IMPROVED with the cliff trigger armed only after an upward step (fsw/relay README).
+// IMPROVED_UP: IMPROVED with the cliff trigger armed only after an upward step, and the escape: a
+// window sum above escape_s steps up and blocks the settled trigger (fsw/relay README).
 enum class AdaptMode : std::uint8_t { OFF, PAPER, IMPROVED, IMPROVED_UP };
 enum class AdaptPhase : std::uint8_t { SEARCH, PROBE, FROZEN };
 enum class AdaptEvent : std::uint8_t { NONE, STEP, PROBE_START, FREEZE_SETTLED, FREEZE_CLIFF, UNFREEZE,
@@ -262,6 +264,8 @@ struct AdaptParams {
     std::uint32_t cliff_num = 3, cliff_den = 2;
     std::uint32_t retreat_dk = 2;
     std::uint32_t unfreeze_num = 3, unfreeze_den = 2, unfreeze_windows = 3;
+    // IMPROVED_UP only: env_alarm · win_ticks in S's units (the flight table's ENV_HIGH level)
+    std::uint64_t escape_s = std::numeric_limits<std::uint64_t>::max();
 };
 
 class Xorshift32 {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "relay/rly_ref.hpp"
+#include "relay/rly_ref_params.hpp"
 
 extern "C" {
 #include "rly_int.h"
@@ -192,40 +193,13 @@ SIM_TEST(g2_tau2_grid)
 
 namespace {
 
-ref::AdaptParams adapt_params(const rly_params_t &p)
-{
-    ref::AdaptParams a;
-    a.mode = static_cast<ref::AdaptMode>(p.adapt_mode);
-    a.tmin_windows = p.tmin_windows;
-    a.dk_q16 = p.dk_q16;
-    a.kt0_q16 = p.kt0_q16;
-    a.kt_min_q16 = p.kt_min_q16;
-    a.kt_max_q16 = p.kt_max_q16;
-    a.delta0_num = p.delta0_num;
-    a.delta0_den = p.delta0_den;
-    a.n_small = p.n_small;
-    a.n_ignore = p.n_ignore;
-    a.count_before_tmin = p.count_before_tmin != 0u;
-    a.learn_after_tmin = p.learn_after_tmin != 0u;
-    a.seed = p.seed;
-    a.gate_dk = p.gate_dk;
-    a.probe_settle = p.probe_settle;
-    a.cliff_num = p.cliff_num;
-    a.cliff_den = p.cliff_den;
-    a.retreat_dk = p.retreat_dk;
-    a.unfreeze_num = p.unfreeze_num;
-    a.unfreeze_den = p.unfreeze_den;
-    a.unfreeze_windows = p.unfreeze_windows;
-    return a;
-}
-
 // One sequence through both: every field of every window's decision compared.
 std::uint64_t g5_sequence(const rly_params_t &p, const std::vector<std::uint64_t> &s, const std::vector<bool> &valid,
                           const char *name)
 {
     static rly_adapt_t a;
     rly_adapt_init(&a, &p);
-    ref::Adapt r(adapt_params(p));
+    ref::Adapt r(ref::adapt_params_of(p));
     std::uint16_t kt = p.kt0_q16;
     std::uint64_t bad = 0, events[8] = {0};
     for (std::size_t j = 0; j < s.size(); ++j) {
@@ -321,12 +295,12 @@ SIM_TEST(g5_adaptation_bit_exact_on_synthetic_sums)
 // up. Among 40 positions of a 2x rise in a swinging descent, the flight code finds one where the
 // last step went down (IMPROVED freezes there, IMPROVED_UP does not) and one where it went up (both
 // freeze); on both sequences each mode agrees with the reference field for field.
-static std::vector<std::uint8_t> flight_events(const rly_params_t &p, const std::vector<std::uint64_t> &s)
+static std::vector<rly_win_t> flight_windows(const rly_params_t &p, const std::vector<std::uint64_t> &s)
 {
     static rly_adapt_t a;
     rly_adapt_init(&a, &p);
     std::uint16_t kt = p.kt0_q16;
-    std::vector<std::uint8_t> ev;
+    std::vector<rly_win_t> ws;
     for (std::size_t j = 0; j < s.size(); ++j) {
         rly_win_t w{};
         std::uint32_t h = 0u;
@@ -334,9 +308,9 @@ static std::vector<std::uint8_t> flight_events(const rly_params_t &p, const std:
         w.j = static_cast<std::uint32_t>(j);
         w.kt_in_q16 = kt;
         kt = rly_adapt_window(&a, &p, true, &w, &h);
-        ev.push_back(w.event);
+        ws.push_back(w);
     }
-    return ev;
+    return ws;
 }
 
 SIM_TEST(g5_improved_up_arms_the_cliff_only_after_an_upward_step)
@@ -355,10 +329,10 @@ SIM_TEST(g5_improved_up_arms_the_cliff_only_after_an_upward_step)
             if (j == jr) { y = 2 * s.back(); }
             s.push_back(y);
         }
-        const auto ei = flight_events(pi, s);
-        const auto eu = flight_events(pu, s);
-        const bool i_cliff = ei[jr] == RLY_EV_FREEZE_CLIFF;
-        const bool u_cliff = eu[jr] == RLY_EV_FREEZE_CLIFF;
+        const auto ei = flight_windows(pi, s);
+        const auto eu = flight_windows(pu, s);
+        const bool i_cliff = ei[jr].event == RLY_EV_FREEZE_CLIFF;
+        const bool u_cliff = eu[jr].event == RLY_EV_FREEZE_CLIFF;
         if (down_found < 0 && i_cliff && !u_cliff) {
             down_found = static_cast<int>(jr);
             const std::vector<bool> v(s.size(), true);
@@ -375,6 +349,50 @@ SIM_TEST(g5_improved_up_arms_the_cliff_only_after_an_upward_step)
                 "does not), after an upward one at window %d (both freeze)\n", down_found, up_found);
     EXPECT_TRUE(down_found >= 0);
     EXPECT_TRUE(up_found >= 0);
+}
+
+// IMPROVED_UP's escape (fsw/relay README "k_t adaptation"): a window mean above env_alarm steps k_t
+// up whatever learning says and keeps the settled trigger from freezing there. A stationary plateau
+// 20 % above the alarm level, with 1 % swings so every window is "small" (delta0 = 5 %): IMPROVED
+// settles and probes inside it; IMPROVED_UP steps up at every window and never probes; the same
+// plateau 20 % below the alarm behaves as IMPROVED. Each agrees with the reference field for field.
+SIM_TEST(g5_improved_up_escapes_windows_above_the_alarm)
+{
+    rly_params_t pi = RLY_TBL_DEFAULT;
+    rly_params_t pu = RLY_TBL_DEFAULT;
+    pi.adapt_mode = RLY_ADAPT_IMPROVED;
+    pu.adapt_mode = RLY_ADAPT_IMPROVED_UP;
+    const std::uint64_t alarm_s = static_cast<std::uint64_t>(pu.env_alarm_q40) * pu.win_ticks;
+    for (const bool high : {true, false}) {
+        const std::uint64_t level = high ? alarm_s + alarm_s / 5u : alarm_s - alarm_s / 5u;
+        std::vector<std::uint64_t> s;
+        for (std::uint64_t j = 0; j < 40; ++j) {
+            s.push_back(level + (j & 1u) * (level / 100u));
+        }
+        const std::vector<bool> v(s.size(), true);
+        EXPECT_EQ_INT(g5_sequence(pi, s, v, high ? "IMPROVED above alarm" : "IMPROVED below alarm"), 0);
+        EXPECT_EQ_INT(g5_sequence(pu, s, v, high ? "IMPROVED_UP above alarm" : "IMPROVED_UP below alarm"), 0);
+        const auto wi = flight_windows(pi, s);
+        const auto wu = flight_windows(pu, s);
+        int probes_i = 0, probes_u = 0, up_steps = 0, same = 0;
+        for (std::size_t j = 0; j < s.size(); ++j) {
+            probes_i += wi[j].event == RLY_EV_PROBE_START ? 1 : 0;
+            probes_u += wu[j].event == RLY_EV_PROBE_START ? 1 : 0;
+            // from window 1 on (window 0 is the random first step)
+            up_steps += (j > 0 && wu[j].event == RLY_EV_STEP && wu[j].sign == 1 && wu[j].kt_next_q16 > wu[j].kt_in_q16) ? 1 : 0;
+            same += (wi[j].event == wu[j].event && wi[j].kt_next_q16 == wu[j].kt_next_q16) ? 1 : 0;
+        }
+        std::printf("G5 escape %s the alarm: IMPROVED probes %d, IMPROVED_UP probes %d, up-steps %d of %zu, "
+                    "windows equal to IMPROVED %d\n", high ? "above" : "below", probes_i, probes_u, up_steps,
+                    s.size() - 1u, same);
+        EXPECT_TRUE(probes_i >= 1);   // the plateau is settled: without the escape it is probed
+        if (high) {
+            EXPECT_EQ_INT(probes_u, 0);
+            EXPECT_EQ_INT(up_steps, static_cast<int>(s.size()) - 1);
+        } else {
+            EXPECT_EQ_INT(same, static_cast<int>(s.size()));
+        }
+    }
 }
 
 SIM_TEST(g6_xorshift32_streams)
@@ -474,6 +492,7 @@ int main(int argc, char **argv)
                                        cmocka_unit_test(g2_tau2_grid),
                                        cmocka_unit_test(g5_adaptation_bit_exact_on_synthetic_sums),
                                        cmocka_unit_test(g5_improved_up_arms_the_cliff_only_after_an_upward_step),
+                                       cmocka_unit_test(g5_improved_up_escapes_windows_above_the_alarm),
                                        cmocka_unit_test(g6_xorshift32_streams),
                                        cmocka_unit_test(g7_rigid_fixed_point_first_cycle)};
     return cmocka_run_group_tests_name("rly_golden", tests, nullptr, nullptr);

@@ -23,6 +23,7 @@
 
 #include "fsw_cli.hpp"
 #include "relay/rly_ref.hpp"
+#include "relay/rly_ref_params.hpp"
 
 extern "C" {
 #include "rly.h"
@@ -125,25 +126,6 @@ SeedResult fly_flight(rly_params_t p, double t_end_s, double t_late_s)
     return r;
 }
 
-ref::AdaptParams adapt_of(const rly_params_t &p)
-{
-    ref::AdaptParams a;
-    a.mode = static_cast<ref::AdaptMode>(p.adapt_mode);
-    a.tmin_windows = p.tmin_windows;
-    a.dk_q16 = p.dk_q16;
-    a.kt0_q16 = p.kt0_q16;
-    a.kt_min_q16 = p.kt_min_q16;
-    a.kt_max_q16 = p.kt_max_q16;
-    a.delta0_num = p.delta0_num;
-    a.delta0_den = p.delta0_den;
-    a.n_small = p.n_small;
-    a.n_ignore = p.n_ignore;
-    a.count_before_tmin = p.count_before_tmin != 0u;
-    a.learn_after_tmin = p.learn_after_tmin != 0u;
-    a.seed = p.seed;
-    return a;
-}
-
 SeedResult fly_ref(const rly_params_t &p, double t_end_s, double t_late_s)
 {
     SeedResult r;
@@ -154,7 +136,7 @@ SeedResult fly_ref(const rly_params_t &p, double t_end_s, double t_late_s)
     opt.quantise = true;
     const auto t0 = std::chrono::steady_clock::now();
     const ref::AdaptiveRun a =
-        ref::run_adaptive(ref::RelayModel{}, law, adapt_of(p), ref::RelayState{}, t_end_s, p.win_ticks, opt);
+        ref::run_adaptive(ref::RelayModel{}, law, ref::adapt_params_of(p), ref::RelayState{}, t_end_s, p.win_ticks, opt);
     double sum = 0.0;
     std::uint32_t n = 0;
     for (std::size_t j = 0; j < a.windows.size(); ++j) {
