@@ -13,12 +13,15 @@
       cw.eps_c: {normal: [0.0, 0.01], clip: [-0.03, 0.03]}
       cw.nav.profile: {choice: [ideal, nominal]}
       cw.t_min_us: {grid: [20000, 40000]}  # every value for every random draw: runs cycle through the grid
+      table.t_min_cnt: {grid: [2, 4], with: cw.t_min_us}   # zipped: the partner grid's i-th value with
+                                         #   this one's i-th (same length; not a factor of the product)
       cw.nav.seed: seed                  # a fresh 63-bit seed per run
       table.alpha_q30[0]: {uniform_int: [1020054733, 1127428915]}
     metrics: [miss_r_m, dv_used_mps]     # summary.json keys kept per run (numbers)
     pass: [miss_r_m <= 1.0, fsw_n_safe == 0]   # every criterion must hold: KEY OP NUMBER
 
-Inputs of run i: the grid values are the cartesian product of the grid parameters in their order,
+Inputs of run i: the grid values are the cartesian product of the grid parameters in their order
+(a zipped grid follows its partner's index),
 run i taking combination i mod (product of the grid sizes); every random parameter is drawn, in
 the definition's order, from numpy's PCG64 seeded with SeedSequence([seed, i]). So a run's inputs
 never depend on the worker count, the chunking or the order of completion.
@@ -44,8 +47,9 @@ class CampaignError(ValueError):
 
 
 class Dispersion(object):
-    def __init__(self, path, kind, args, clip=None):
+    def __init__(self, path, kind, args, clip=None, zip_with=None):
         self.path, self.kind, self.args, self.clip = path, kind, args, clip
+        self.zip_with = zip_with   # a grid that takes its values at this grid's index
 
     @property
     def table(self):
@@ -140,7 +144,18 @@ class Campaign(object):
         self.dispersions = []
         for p, spec in disp.items():
             self.dispersions.append(self._dispersion(str(p), spec, lambda what, p=p: fail("dispersions.%s" % p, what)))
-        self.grid = [x for x in self.dispersions if x.kind == "grid"]
+        seen = {}
+        for x in self.dispersions:
+            if x.zip_with is not None:
+                partner = seen.get(x.zip_with)
+                if partner is None or partner.kind != "grid" or partner.zip_with is not None:
+                    fail("dispersions.%s" % x.path, "with: %r is not a grid defined before it (and not zipped itself)"
+                         % x.zip_with)
+                if len(partner.args) != len(x.args):
+                    fail("dispersions.%s" % x.path, "with: %d values, %s has %d" % (len(x.args), x.zip_with,
+                                                                                   len(partner.args)))
+            seen[x.path] = x
+        self.grid = [x for x in self.dispersions if x.kind == "grid" and x.zip_with is None]
         self.grid_size = 1
         for g in self.grid:
             self.grid_size *= len(g.args)
@@ -176,7 +191,7 @@ class Campaign(object):
         if not isinstance(spec, dict):
             fail("a dispersion is 'seed' or a mapping {KIND: ARGS[, clip: [lo, hi]]}, KIND one of %s" % ", ".join(KINDS))
         kinds = [k for k in spec if k in KINDS]
-        other = [k for k in spec if k not in KINDS and k != "clip"]
+        other = [k for k in spec if k not in KINDS and k not in ("clip", "with")]
         if len(kinds) != 1 or other:
             fail("exactly one of %s (and optionally clip); got %s" % (", ".join(KINDS), ", ".join(map(str, spec))))
         kind, a = kinds[0], spec[kinds[0]]
@@ -198,7 +213,10 @@ class Campaign(object):
             if kind not in ("uniform", "normal") or not isinstance(clip, list) or len(clip) != 2 or \
                     not all(num(v) for v in clip) or not clip[0] < clip[1]:
                 fail("clip: [lo, hi] with lo < hi, for uniform or normal")
-        return Dispersion(path, kind, a, clip)
+        zip_with = spec.get("with")
+        if zip_with is not None and (kind != "grid" or not PATH.match(str(zip_with))):
+            fail("with: a grid's partner grid path (key.key[i] or table.field[i])")
+        return Dispersion(path, kind, a, clip, None if zip_with is None else str(zip_with))
 
     # ------------------------------------------------------------------------ inputs of a run
 
@@ -208,9 +226,14 @@ class Campaign(object):
             raise IndexError(i)
         out = {}
         k = i % self.grid_size
+        index = {}
         for g in reversed(self.grid):           # mixed radix, the first grid parameter slowest
-            out[g.path] = g.args[k % len(g.args)]
+            index[g.path] = k % len(g.args)
+            out[g.path] = g.args[index[g.path]]
             k //= len(g.args)
+        for x in self.dispersions:
+            if x.zip_with is not None:
+                out[x.path] = x.args[index[x.zip_with]]
         rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence([self.seed, i])))
         for x in self.dispersions:
             if x.kind != "grid":
