@@ -57,6 +57,16 @@ FestParams make_fest_params(const Channel &ch, const FestOptions &opt)
     // 0.03 Hz, whose re-tune then comes too late for A3-5: t* 193 s against 0.55 x 340 s); yaw keeps
     // 0.4, which its section 2 needs against the rigid residual at 0.01-0.02 Hz.
     p.alpha_hp = p.n_sections == 2 ? 0.4 : 0.25;
+    // yaw: the high-pass corner follows section 1 / (mode-2 / mode-1 ratio), 1 / 1.74 (step 1c of
+    // step_td: a corner that follows section 2 moves with its wander and phase-modulates the line).
+    if (p.n_sections == 2) {
+        double r_lo = 1e300, r_hi = 0.0;
+        for (const Mode &m : ch.modes) {
+            r_lo = std::min(r_lo, m.ratio);
+            r_hi = std::max(r_hi, m.ratio);
+        }
+        p.hp_ref_scale = r_lo / r_hi;
+    }
     // high-pass frequency floor: above the lowest line for pitch and roll (roll's slow closed-loop
     // pole at 0.01 Hz otherwise drags the notch to the clamp), at the range edge for yaw, whose
     // section 2 must still reach mode 1 at 0.0100 Hz.
@@ -207,6 +217,7 @@ double FestRef::fobs_of_a(double a) const
 void FestRef::reset_anf()
 {
     d1_ = d2_ = 0.0;
+    q1_ = q2_ = 0.0;
     two_ = false;
     slow_ok_ = false;
     n_single_ = 0;
@@ -414,8 +425,22 @@ void FestRef::step_td(double k2)
     //     The corner never follows the estimate below the design range (f_hp_min_hz): below it the
     //     high-pass would pass more of the slow residual, which pulls the notch lower still (roll at
     //     0.01 Hz, whose closed-loop slow pole sits next to the line, ran into the lower clamp).
+    //     Yaw: the corner follows section 1 (the dominant, steady line) scaled by the model's mode-1 /
+    //     mode-2 ratio, not section 2. A moving corner is not harmless: the high-pass phase at the
+    //     line, 2 atan(f_c / f), changes with it, and its rate is a frequency error of the line
+    //     (df = dphi/dt / 2 pi) that every section then tracks. Section 2 wanders whenever there is no
+    //     second line to hold (in the noise after mode 2 has decayed, and between the beats of mode 2
+    //     at low f): with min(f_obs1, f_obs2) the corner swung 0.0064 -> 0.0108 Hz in 24 s at 0.035 Hz,
+    //     which is -0.24 rad at the line, a 4.5 % frequency offset while it lasts, and section 1's
+    //     estimate of the persistent mode 1 (zeta ~0.002) walked +-1.6 % after the response had
+    //     decayed (R4 3.3 % per 600 s, a re-tune every few periods); it also fed back into section 2
+    //     through the double notch (R3 at 0.02 Hz, 5.5 % at 300 s). Section 1 / ratio sits at mode 1
+    //     when section 1 holds mode 2 (low f), and at ~0.57 f1 (0.23 x the line, as pitch's 0.25)
+    //     when section 1 holds mode 1 alone (high f).
+    //     At 0.010 Hz both sections still wander with the 135-s beat of modes 1 and 2; what keeps
+    //     f_hat right there is section 2's co-motion, third pass and pair_att (step 6/7).
     const double f_hp = std::max(
-        p_.n_sections == 2 ? std::min(fobs_of_a(a_[0]), fobs_of_a(a_[1])) : f_rep_obs_hz_, p_.f_hp_min_hz);
+        p_.n_sections == 2 ? fobs_of_a(a_[0]) * p_.hp_ref_scale : f_rep_obs_hz_, p_.f_hp_min_hz);
     const double rho = 1.0 - p_.alpha_hp * kTwoPi * f_hp * p_.Td_s;
     const double h1 = v_d - hp_x1_ + rho * hp_h1_;
     const double h2 = h1 - hp_h1_ + rho * hp_h2_;
@@ -505,6 +530,22 @@ void FestRef::step_td(double k2)
             // dominates and section 1's leakage of it (5-10 %) is as strong as mode 1 (~12 %),
             // so an unconstrained section 2 locks onto the leak (seen at 0.01 Hz, ratio 1.1-1.2).
             // Its measured ratio must still fall inside the narrower [ratio_lo, ratio_hi].
+            if (i == 1 && out_.f_obs_hz[0] > 0.0) {
+                // yaw: section 2 moves with section 1 (same ratio) while its own notch is still
+                // annealing. Section 1 descends from the prior for ~100 s; section 2, adapting on its
+                // own, reached the pair window only by sliding through it while both notches were
+                // wide, and at 0.010 Hz f_hat took a value 18 % high there and held it to ~350 s.
+                // Started at section 1's prior / 1.74 and carried along, section 2 arrives next to
+                // mode 1 when section 1 lands on mode 2 (0.010 Hz: f_hat(300 s) -1.7 % instead of
+                // +18.6 %). Port: f_obs of both sections exist already; one cos (as for the window
+                // clamps below) and the guarded reciprocal of f1_old (>= fobs_lo_hz).
+                const double k_tgt2 = clampd(1.0 - p_.beta_kappa * kTwoPi * out_.f_obs_hz[1] * p_.Td_s,
+                                             p_.kappa_max, p_.kappa_max_hi);
+                if (kappa_[1] < k_tgt2 - p_.sec2_comove_dk) {
+                    const double f1_new = fobs_of_a(a_[0]);  // section 1 adapted above (i == 0)
+                    a_[1] = a_of_fobs(out_.f_obs_hz[1] * f1_new / out_.f_obs_hz[0]);
+                }
+            }
             const double lo_i = i == 0 ? a_lo : a_of_fobs(out_.f_obs_hz[0] / p_.sec2_hi);
             const double hi_i = i == 0 ? a_hi : a_of_fobs(out_.f_obs_hz[0] / p_.sec2_lo);
             a_[i] = clampd(a_[i] - P_[i] * phi * et, lo_i, hi_i);
@@ -529,6 +570,17 @@ void FestRef::step_td(double k2)
             in = t0 + a * d1_ + d2_;
             d2_ = d1_;
             d1_ = t0;
+            // ... and a third pass, wider (kappa_pass3 0.97 against section 1's 0.98 at low f):
+            // section 1 swings +-2.5-4 % about mode 2 with the 135-s beat of modes 1 and 2 at
+            // 0.010 Hz, outside the double 0.98 notch, and that leak (as strong as mode 1 before
+            // ~300 s) pulled section 2 to the top of its window. Needs pair_att (step 7): with the
+            // deeper suppression, section 2 at 0.015 Hz, once mode 2 has died (~1000 s), pairs with
+            // section 1 sliding down between the lines (f_hat -21 % at 1200 s without it).
+            const double kq = p_.kappa_pass3;
+            const double q0 = in - kq * a * q1_ - kq * kq * q2_;
+            in = q0 + a * q1_ + q2_;
+            q2_ = q1_;
+            q1_ = q0;
         }
     }
 
@@ -557,7 +609,11 @@ void FestRef::step_td(double k2)
     if (p_.n_sections == 2) {
         const bool r_ok = out_.tone_ratio >= p_.ratio_lo && out_.tone_ratio <= p_.ratio_hi;
         // the pair is judged only once both notches have narrowed (their early power ratios mean nothing)
-        line_ok = two_ ? (r_ok && kappa_[1] >= p_.kappa_conf) : single_proof(f_rep);
+        // ... and only while the cascade removes most of the residual (both lines real): a section 1
+        // sliding between lines (mode 2 decayed) notches little, and its ratio to section 2 means
+        // nothing then.
+        const bool casc_ok = ms_out_[1] <= p_.pair_att * p_.pair_att * ms_in_[0];
+        line_ok = two_ ? (r_ok && kappa_[1] >= p_.kappa_conf && casc_ok) : single_proof(f_rep);
     }
     f_moved_ = f_moved_ || (adapt && line_ok);
     if (adapt && line_ok) {

@@ -21,7 +21,8 @@
 //     invalid samples left out, an all-invalid block repeats the last mean and freezes adaptation).
 //  Per Td:
 //  1c. Two DC blockers (1 - z^-1)/(1 - rho z^-1), rho = 1 - alpha_hp w_line Td: the rigid loop's slow
-//     pole (0.035 rad/s at k2 = 475) is what a rigid-model error leaves; the corner follows the line.
+//     pole (0.035 rad/s at k2 = 475) is what a rigid-model error leaves; the corner follows the line
+//     (yaw: section 1's line / 1.74, never section 2's, whose wander would phase-modulate the lines).
 //  4. Gate, hysteretic and noise-referenced: r_e = running RMS (20 s) of the residual; opens at
 //     r_e >= 8 sigma_ref, closes at r_e < 4 sigma_ref, sigma_ref = max(sigma_hat, sigma_y / 2).
 //  5. u = e_d / max(r_n, sigma_ref), r_n a slow RMS (5-s attack, ~2-cycle release; a faster one
@@ -32,8 +33,10 @@
 //     scalar RLS, forgetting lambda = 0.97:  P <- P / (lambda + phi^2 P) (denominator >= lambda);
 //     a <- a - P phi eps; a, P clamped. kappa: 0.6 -> target by (target - kappa) *= 0.97 per
 //     adapting Td; target 0.93 (pitch, roll), 1 - 0.16 w Td in [0.93, 0.98] (yaw).
-//     Yaw: two sections in cascade; section 2 sees section 1's line notched twice and searches
-//     [f1 / 2.2, f1 / 1.3]; the reported line is the lower of a pair whose ratio is in [1.5, 2.0],
+//     Yaw: two sections in cascade; section 2 sees section 1's line notched twice (kappa) and once
+//     more (kappa 0.97), searches [f1 / 2.2, f1 / 1.3], and keeps its ratio to section 1 while its
+//     kappa anneals; the reported line is the lower of a pair whose ratio is in [1.5, 2.0] while the
+//     cascade removes all but 0.3 (rms) of the residual,
 //     or a single line proven to be mode 1 (below 0.0155 Hz; continuing a verified pair's lower
 //     line; or decaying like mode 1, zeta < 0.007 over 64 s, >= 200 s after excitation, >= 0.04 Hz).
 //  7. f_obs = acos(-a/2) / (2 pi Td) (port: 2 asin(sqrt(2 + a)/2), isqrt + odd polynomial);
@@ -113,6 +116,11 @@ struct FestParams {
     // 1c. high-pass on the decimated residual (per channel in make_fest_params)
     double alpha_hp = 0.4;          // corner / line frequency: 0.25 pitch and roll, 0.4 yaw ...
     double f_hp_min_hz = 0.0095;    // ... with the line frequency floored here: 0.011 / 0.0095 Hz
+    double hp_ref_scale = 1.0;      // yaw: the line is section 1's f_obs x this (mode-1 / mode-2 ratio,
+                                    // 1 / 1.74), not the lower of the two sections: section 2 wanders
+                                    // when it holds no line, and a moving corner shifts the line's
+                                    // frequency (step 1c). Not in the flight table (yaw is not ported):
+                                    // a port carries it as a compile-time constant or one uq30 word.
 
     // 3. anti-alias low-pass (full rate) ahead of the block mean
     double f_aa_hz = 0.35;
@@ -164,6 +172,12 @@ struct FestParams {
                                     //   half-cycle stall must not pass as convergence)
     double ratio_lo = 1.5, ratio_hi = 2.0;        // yaw tone ratio window
     double sec2_lo = 1.3, sec2_hi = 2.2;          // yaw: section 2's search window below section 1
+    double sec2_comove_dk = 0.02;   // yaw: section 2 keeps its ratio to section 1 while its kappa is
+                                    //   more than this below its target (~the first 100 adapting Td)
+    double kappa_pass3 = 0.97;      // yaw: pole radius of the third pass of section 1's notch ahead of
+                                    //   section 2 (wider than section 1's 0.98 at low f)
+    double pair_att = 0.3;          // yaw: f_hat follows a pair only while the cascade leaves <= this
+                                    //   (rms) of its input
     double two_att1 = 0.02;         // yaw: two lines when section 1 leaves >= this (rms ratio) ...
     double two_att2 = 0.5;          // ... and section 2 removes all but <= this of its input
     double single_tone_max_hz = 0.0155;           // yaw single line below this: mode 1 (mode 2 of f >= 0.0095 Hz
@@ -273,6 +287,7 @@ private:
     double ms_s_[kFestMaxSections] = {};   // s^2: [0, 2^22] [3.0e4] -> uq10 in uint32 (sqrt: isqrt)
     double ms_in_[kFestMaxSections] = {}, ms_out_[kFestMaxSections] = {};  // [0, 2^5] [9.7] -> uq26
     double d1_ = 0.0, d2_ = 0.0;    // yaw: second pass of section 1's notch, as s1_ [+-133] -> q16
+    double q1_ = 0.0, q2_ = 0.0;    // yaw: third pass (kappa_pass3), as s1_ -> q16
     // yaw line logic
     bool two_ = false;              // two lines seen
     bool slow_ok_ = false;          // the single line passed the decay proof (last period)

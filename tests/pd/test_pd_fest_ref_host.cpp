@@ -165,9 +165,40 @@ SIM_TEST(r4_quiescence)
     }
 }
 
+// Yaw (two sections, the lower-tone rule; double design only, not yet ported): R3 for its lowest tone
+// and R5 at the nodes that failed before the 2026-12-06 changes (0.020 Hz at 300 s, 5.5 %; 0.010 Hz,
+// 18.6 % with the corner fix alone: fsw/pd/README.md "The estimator in double") and at 0.07 Hz.
+SIM_TEST(r3_r5_yaw_lowest_tone)
+{
+    static const K2Schedule ys = load_k2_schedule(std::string(PD_SCHEDULE_DIR) + "/yaw_fast.json");
+    static const FestParams yp = make_fest_params(Channel::yaw());
+    for (double f : {0.010, 0.020, 0.035, 0.07}) {
+        for (unsigned seed = 0; seed < 2; ++seed) {
+            AdaptiveConfig c;
+            c.plant = Channel::yaw();
+            c.f_hz = f;
+            c.seed = seed;
+            const AdaptiveRun r = fly_adaptive(c, yp, ys);
+            const double e300 = r.f_at(300.0) / f - 1.0, e1200 = r.f_at(1200.0) / f - 1.0;
+            double worst = 0.0;
+            for (std::size_t i = 0; i < r.f_hat_hz.size(); ++i) {
+                if (r.confident[i] != 0) {
+                    worst = std::max(worst, r.f_hat_hz[i] / f);
+                }
+            }
+            std::printf("  yaw f=%.3f seed %u: f^(300) %+.4f f^(1200) %+.4f, max confident f^/f %.4f, resets %d\n", f,
+                        seed, e300, e1200, worst, r.resets);
+            EXPECT_LE(std::fabs(e300), 0.05);
+            EXPECT_LE(std::fabs(e1200), 0.10);
+            EXPECT_LE(worst, 1.1);
+        }
+    }
+}
+
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(fest_table), cmocka_unit_test(r3_a35_pitch),
-                                       cmocka_unit_test(r5_coupling), cmocka_unit_test(r4_quiescence)};
+                                       cmocka_unit_test(r5_coupling), cmocka_unit_test(r4_quiescence),
+                                       cmocka_unit_test(r3_r5_yaw_lowest_tone)};
     return cmocka_run_group_tests_name("pd_fest_ref_host", tests, nullptr, nullptr);
 }
