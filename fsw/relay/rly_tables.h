@@ -5,7 +5,7 @@
 #include "rly.h"
 
 extern const rly_params_t RLY_TBL_DEFAULT;   /* rly_default */
-extern const rly_params_t RLY_TBL_IMPROVED_UP;   /* rly_improved_up */
+extern const rly_params_t RLY_TBL_IMPROVED;   /* rly_improved */
 extern const rly_params_t RLY_TBL_PAPER;   /* rly_paper */
 extern const rly_params_t RLY_TBL_FIXED_031;   /* rly_fixed_031 */
 extern const rly_params_t RLY_TBL_FIXED_03389;   /* rly_fixed_03389 */

@@ -46,7 +46,7 @@ public:
     std::vector<std::string> root_keys() const override { return {"relay"}; }
     std::vector<std::string> tables() const override
     {
-        return {"rly_default", "rly_improved_up", "rly_paper", "rly_fixed_031", "rly_fixed_03389"};
+        return {"rly_default", "rly_improved", "rly_paper", "rly_fixed_031", "rly_fixed_03389"};
     }
 
     void defaults(Scenario &s) const override
@@ -114,7 +114,7 @@ const MissionSection &relay_section()
 rly_params_t relay_boot_table(const std::string &name)
 {
     if (name == "rly_default") { return RLY_TBL_DEFAULT; }
-    if (name == "rly_improved_up") { return RLY_TBL_IMPROVED_UP; }
+    if (name == "rly_improved") { return RLY_TBL_IMPROVED; }
     if (name == "rly_paper") { return RLY_TBL_PAPER; }
     if (name == "rly_fixed_031") { return RLY_TBL_FIXED_031; }
     if (name == "rly_fixed_03389") { return RLY_TBL_FIXED_03389; }

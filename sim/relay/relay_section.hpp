@@ -7,7 +7,7 @@
 //   relay: {m_u_radps2, m_eps_radps2, xbar0_rad, xbardot0_radps, x_max_rad, abar_from_s,
 //           modes: [{omega_radps, k, xt0_rad, xtdot0_radps}, ...],
 //           sensor: {noise_rad, bias_rad, seed}, actuator: {scale_error, delay_ticks}}
-//   fsw: {table: rly_default | rly_paper | rly_fixed_031 | rly_fixed_03389}
+//   fsw: {table: rly_default | rly_improved | rly_paper | rly_fixed_031 | rly_fixed_03389}
 // Defaults: the source's example (spec 20 §2.1), published initial state.
 #ifndef SIM_RLY_SECTION_HPP
 #define SIM_RLY_SECTION_HPP

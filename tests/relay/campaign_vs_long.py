@@ -2,7 +2,7 @@
 runner flying `sil run --batch` (plant, sealed packets, bridge, executive, fsw_step; the memq streams)
 and rly_long (the flight
 module alone against the same exact plant, 3e7 ticks in seconds). This checks that they are the same
-experiment: over tests/relay/campaign_s7_short.yaml (seeds 1-2, 2000 s, IMPROVED) every run passes,
+experiment: over tests/relay/campaign_s7_short.yaml (seeds 1-2, 2000 s, the default table: IMPROVED_UP) every run passes,
 and per seed the final k_t is equal (both print it to 1e-6 of the Q0.16 value: the same k_t decisions),
 the freeze time agrees, and the true mean envelope of the SIL run is within the estimator's budget of
 rly_long's mean of the flight window means.
@@ -33,10 +33,10 @@ def main():
     os.makedirs(out)
     subprocess.run([sys.executable, "-m", "tools.campaign", "run", CAMPAIGN, "--out", os.path.join(out, "campaign"),
                     "--workers", "2", "--sil", sil, "--no-progress"], check=True)
-    subprocess.run([rly_long, "stats", "--mode", "improved", "--seeds", "%d-%d" % SEEDS, "--t", str(T_END_S),
+    subprocess.run([rly_long, "stats", "--mode", "improved-up", "--seeds", "%d-%d" % SEEDS, "--t", str(T_END_S),
                     "--code", "flight", "--jobs", "1", "--csv", out], check=True)
     c = Store(os.path.join(out, "campaign")).load().set_index("in.table.seed")
-    r = pd.read_csv(os.path.join(out, "improved_flight_runs.csv")).set_index("seed")
+    r = pd.read_csv(os.path.join(out, "improved-up_flight_runs.csv")).set_index("seed")
     assert sorted(c.index) == sorted(r.index) == list(range(SEEDS[0], SEEDS[1] + 1)), (c.index, r.index)
     assert (c.status == "ok").all() and c.passed.all(), c[["status", "passed", "reason"]]
     for seed in r.index:

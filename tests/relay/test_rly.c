@@ -85,7 +85,7 @@ UT_TEST(table_check_one_case_per_rule)
     UT_UEQ(rly_params_check(&RLY_TBL_DEFAULT, &why), FSW_OK);
     UT_UEQ(why, 0u);
     UT_UEQ(rly_params_check(&RLY_TBL_PAPER, &why), FSW_OK);
-    UT_UEQ(rly_params_check(&RLY_TBL_IMPROVED_UP, &why), FSW_OK);
+    UT_UEQ(rly_params_check(&RLY_TBL_IMPROVED, &why), FSW_OK);
     UT_UEQ(rly_params_check(NULL, &why), FSW_ERR_ARG);
     p = RLY_TBL_DEFAULT; p.gamma_q24 = p.eps_q24;                 UT_UEQ(why_of(&p), RLY_WHY_GEOM);
     p = RLY_TBL_DEFAULT; p.gamma_q24 = 1;                         UT_UEQ(why_of(&p), RLY_WHY_GEOM);

@@ -1,7 +1,8 @@
 """Plots of the relay's long runs (spec 20 §5, §7 S5-S7), from the CSV files `rly_long` writes:
 
     build/host-release/tools/relay/rly_long stats --mode paper --csv DIR
-    build/host-release/tools/relay/rly_long stats --mode improved --csv DIR
+    build/host-release/tools/relay/rly_long stats --mode improved --csv DIR       (spec 20 §5.6 as printed)
+    build/host-release/tools/relay/rly_long stats --mode improved-up --csv DIR    (the flight default)
     build/host-release/tools/relay/rly_long sweep --csv DIR            (continuous law, reference)
     .venv/bin/python -m tools.relay.long_plots DIR [--out DIR]
 
@@ -96,7 +97,7 @@ def plot_runs(d, out, tag):
 def plot_late(d, out):
     fig, ax = plt.subplots(figsize=(7, 4))
     found = False
-    for tag in ("paper_flight", "improved_flight", "paper_ref", "improved_ref"):
+    for tag in ("paper_flight", "improved_flight", "improved-up_flight", "paper_ref", "improved_ref", "improved-up_ref"):
         p = os.path.join(d, "%s_runs.csv" % tag)
         if not os.path.exists(p):
             continue
@@ -112,7 +113,7 @@ def plot_late(d, out):
     ax.set_xscale("log")
     ax.set_xlabel("ā_late, mean over [20000, 30000] s [rad]")
     ax.set_ylabel("fraction of seeds")
-    ax.set_title("PAPER against IMPROVED over seeds (spec 20 §7 S5, S7)")
+    ax.set_title("PAPER against IMPROVED and IMPROVED_UP over seeds (spec 20 §7 S5, S7)")
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=7)
     path = os.path.join(out, "abar_late.png")

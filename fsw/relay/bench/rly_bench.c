@@ -8,7 +8,7 @@
  * x += x' + m/2, x' += m), from the published start x(0) = 4.5e-4 rad, x'(0) = 2.2e-5 rad/s,
  * driven by the module's own commanded level (m_u 4e-5, m_eps 1e-6 rad/s^2) and sampled as q24
  * counts (round half away from zero), so the law runs its real two-sided cycle through every
- * state. The table is RLY_TBL_DEFAULT (IMPROVED adaptation) with the window shortened to
+ * state. The table is RLY_TBL_DEFAULT (IMPROVED_UP adaptation) with the window shortened to
  * RLY_B_WIN ticks, so that many windows close; rly_params_check must accept it. One sensor
  * outage of RLY_B_OUT_LEN ticks (> lost_ticks) late in the run adds COAST and its exit.
  *
