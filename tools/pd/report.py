@@ -37,7 +37,11 @@ for _c in CH:
                      Key("peak_x_late_%s_rad" % _c, "peak_x_late_%s_rad" % _c),
                      Key("k2_final_%s_s" % _c, "k2_final_%s_s" % _c),
                      Key("k2_changes_%s" % _c, "k2_changes_%s" % _c),
-                     Key("pd_%s_health_or" % _c, "pd_%s_health_or" % _c)]
+                     Key("pd_%s_health_or" % _c, "pd_%s_health_or" % _c),
+                     # the log's figures exist only for a channel whose estimator published (ADAPTIVE)
+                     Key("fest_f300_%s_hz" % _c, "fest_f300_%s_hz" % _c, optional=True),
+                     Key("fest_f1200_%s_hz" % _c, "fest_f1200_%s_hz" % _c, optional=True),
+                     Key("fest_resets_%s" % _c, "fest_resets_%s" % _c, optional=True)]
 SUMMARY_KEYS.append(Key("linear_invalid", "linear_invalid"))
 
 
@@ -113,7 +117,9 @@ def format_summary(m, src):
                      "beta_lim %d" % (m["pd_%s_health_or" % c], " ".join(m["pd_%s_flags_seen" % c]) or "(no flag)",
                                       *[f["pd_%s_%s" % (c, n)] for n in ("miss", "stale", "range_rej", "rate_rej",
                                                                           "period_rej", "trq_sat", "beta_lim")]))
-        if "fest_resets_%s" % c in m:
+        # the estimator line only for a channel whose estimator published (the summary carries f^ = 0
+        # for the others)
+        if "fest_resets_%s" % c in m and (m.get("fest_f300_%s_hz" % c, 0.0) or m.get("fest_f1200_%s_hz" % c, 0.0)):
             o.append("         estimator: f^(300 s) %.5f Hz %s, f^(1200 s) %.5f Hz %s, FAULTs %d" % (
                 m.get("fest_f300_%s_hz" % c, 0.0), m.get("fest_state300_%s" % c, "-"),
                 m.get("fest_f1200_%s_hz" % c, 0.0), m.get("fest_state1200_%s" % c, "-"), m["fest_resets_%s" % c]))

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "pd/pd_plant.hpp"
+#include "pd/pd_section.hpp"
 #include "gnc/actuator_cmd_v2_t.hpp"
 #include "gnc/sim_truth_t.hpp"
 
@@ -28,6 +29,27 @@ PdMetrics::PdMetrics(const sim::Scenario &s)
         i_fr_[k] = l.at(c + "_fest_resets");
     }
     ty_s = s.h_s();
+    const sim::PdSetup &b = s.mission_part<sim::PdScenario>().body;
+    f0_hz_ = b.f_hz;
+    for (const sim::PdFStep &st : b.f_steps) { f_steps_.emplace_back(st.t_s, st.f_hz); }
+}
+
+double PdMetrics::f_true_at(double t_s) const
+{
+    double f = f0_hz_;
+    for (const auto &st : f_steps_) {
+        if (st.first <= t_s) { f = st.second; }
+    }
+    return f;
+}
+
+double PdMetrics::fest_max_confident_ratio(std::size_t k) const
+{
+    double r = 0.0;
+    for (std::size_t i = 0; i < fest_f[k].size(); ++i) {
+        if ((fest_word[k][i] & 4u) != 0u) { r = std::fmax(r, fest_f[k][i] / f_true_at(t_tlm[i])); }
+    }
+    return r;
 }
 
 void PdMetrics::on_truth(const gnc::sim_truth_t &tr)
@@ -108,6 +130,16 @@ void PdMetrics::summary(Summary &s) const
         s.add("peak_beta_" + c + "_rad", peak_beta[k], "%.6g");
         s.add("peak_x_late_" + c + "_rad", peak_x_late[k], "%.6g");
         s.add("k2_final_" + c + "_s", k2_final[k], "%.4f");
+        // the estimator (spec 40 R3, R5): f_hat at 300 s and 1 200 s, its error against the plant's
+        // f_min then, the largest confident f_hat / f, the FAULT count (f_hat is 0 unless ADAPTIVE)
+        for (const double ts : {300.0, 1200.0}) {
+            const double fh = fest_f_at(k, ts);
+            const std::string at = std::to_string(static_cast<int>(ts));
+            s.add("fest_f" + at + "_" + c + "_hz", fh, "%.7g");
+            s.add("fest_err" + at + "_" + c, std::fabs(fh / f_true_at(ts) - 1.0), "%.6g");
+        }
+        s.add("fest_conf_ratio_max_" + c, fest_max_confident_ratio(k), "%.6g");
+        s.add_int("fest_resets_" + c, fest_resets[k]);
         s.add_int("k2_changes_" + c, k2_changes[k]);
         s.add_hex("pd_" + c + "_health_or", health_or[k]);
         s.add_str("pd_" + c + "_health_or_names", bits_str(health_or[k], m.health, m.n_health));

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mission_host.hpp"
@@ -34,7 +35,7 @@ public:
     std::array<double, 3> k2_final{};                 // s
     std::array<std::uint32_t, 3> k2_changes{}, health_or{};
     bool lin_invalid = false;                         // any sample with |beta| > 0.5 rad
-    // The estimator's telemetry per frame (tests only, not in the summary): published f_hat [Hz] (0
+    // The estimator's telemetry per frame (the summary keeps f_hat at 300 / 1 200 s): published f_hat [Hz] (0
     // while the channel is not ADAPTIVE), the fest word (state bits 0..1, confident bit 2), FAULT count.
     std::vector<double> t_tlm;                        // frame time [s]
     std::array<std::vector<double>, 3> fest_f;
@@ -44,11 +45,17 @@ public:
     // f_hat of the last frame at or before t_s (-1 if none); the largest confident f_hat (0 if none)
     double fest_f_at(std::size_t k, double t_s) const;
     double fest_max_confident(std::size_t k) const;
+    // The plant's f_min at t_s (the scenario's f_hz and f_steps) and the largest confident f_hat / f
+    // over the run (R5; 0 if never confident).
+    double f_true_at(double t_s) const;
+    double fest_max_confident_ratio(std::size_t k) const;
     double ty_s = 0.25;
 
 private:
     std::array<std::size_t, 3> i_health_{}, i_k2_{}, i_dy_{}, i_ff_{}, i_fw_{}, i_fr_{};
     std::array<std::uint32_t, 3> k2_last_{};
+    double f0_hz_ = 0.0;
+    std::vector<std::pair<double, double>> f_steps_;   // (t_s, f_hz)
     bool have_tlm_ = false;
     std::vector<std::int64_t> last_;
 };
