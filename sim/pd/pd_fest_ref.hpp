@@ -232,6 +232,10 @@ public:
     FestOut step(bool y_valid, double y_rad, double M_applied_nm, double k2_in_use);
     const FestOut &out() const { return out_; }
     const FestParams &params() const { return p_; }
+    // The law's control-period phase (0 .. n_y - 1): an estimator started mid-period (a channel entering
+    // ADAPTIVE by telecommand) closes its periods with the law's, as the flight's adaptive_start sets
+    // pd_fest_t.k_in_period = nu (fsw/pd/pd.c). reset() leaves the phase alone.
+    void set_period_phase(int k) { k_in_period_ = (k >= 0 && k < p_.n_y) ? k : 0; }
     double c_of(double f_hz, double k2) const;  // 1 / cinv_of
     double cinv_of(double f_hz, double k2) const;  // 1 / c bilinear on the grid (as flight), clamped to it
 

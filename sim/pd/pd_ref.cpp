@@ -40,6 +40,8 @@ PdChannelTable dequantise(const pd_params_t &p)
     t.k2_max = q(p.g.k2_max_q22, 22);
     for (std::size_t i = 0; i < PD_N_NODES; ++i) { t.k2_node[i] = q(p.g.k2_node_q22[i], 22); }
     t.revision = p.c.revision;
+    const std::uint64_t ty_us = static_cast<std::uint64_t>(p.c.period_us) * static_cast<std::uint64_t>(p.c.n_div);
+    t.fest_ok = pd_fest_check(&p.g.fest) == 0u && ty_us == static_cast<std::uint64_t>(PD_TY_EXACT_US);
     return t;
 }
 
@@ -86,15 +88,69 @@ double pd_sched_k2_continuous(const PdChannelTable &t, double f_hz)
 double pd_gain_p(const PdChannelTable &t) { return quant16(t.k0 * t.k1); }
 double pd_gain_d(const PdChannelTable &t, double k2) { return quant16(t.k0 * k2 / t.Ty); }
 
-PdRefChannel::PdRefChannel(const PdChannelTable &t) : t_(t)
+PdRefChannel::PdRefChannel(const PdChannelTable &t, std::shared_ptr<const pd::FestParams> fest) : t_(t)
 {
-    // The estimator's double design (sim/pd/pd_fest_ref) is proven against the flight pd_fest by
-    // golden_pd_fest; this channel does not carry it, so an ADAPTIVE table is refused here rather than
-    // flown as FIXED.
-    if (t_.src == PD_SRC_ADAPTIVE) {
-        throw std::invalid_argument("reference channel: gain source ADAPTIVE is not modelled (fly it with --fsw fixed)");
+    if (fest) {
+        // the estimator's period is the law's control period of the table (pd_fest_step gets n_y)
+        auto fp = std::make_shared<pd::FestParams>(*fest);
+        fp->n_y = t_.n_y;
+        fest_p_ = fp;
+    }
+    // An ADAPTIVE boot source the flight refuses (pd_params_check: PD_WHY_MODE, the table is vetoed)
+    // is refused here rather than flown as something else.
+    if (t_.src == PD_SRC_ADAPTIVE && !adaptive_ok()) {
+        throw std::invalid_argument(fest_p_ ? "reference channel: gain source ADAPTIVE refused (no usable estimator "
+                                              "block, Ty != 0.25 s or schedule law != law: PD_WHY_MODE)"
+                                            : "reference channel: gain source ADAPTIVE without the estimator's design");
     }
     init();
+}
+
+bool PdRefChannel::set_source(int src)
+{
+    const bool sched_ok = t_.sched_law == t_.law;
+    const bool ok = src == PD_SRC_FIXED || (src == PD_SRC_GROUND && sched_ok) || (src == PD_SRC_ADAPTIVE && adaptive_ok());
+    if (ok) {
+        if (src == PD_SRC_ADAPTIVE && src_ != src) { adaptive_start(); }
+        src_ = src;
+    }
+    return ok;
+}
+
+// ADAPTIVE from a cold start (as adaptive_start): the estimator at its prior, its period aligned with
+// the law's, k2_cold until the first confident re-tune.
+void PdRefChannel::adaptive_start()
+{
+    fest_.emplace(*fest_p_);
+    fest_->set_period_phase(nu_);
+    k2_adapt_ = clamp_k2(t_.k2_cold);
+    f_pub_prev_ = fest_->out().f_hat_hz;
+    n_inv_fest_ = 0;
+}
+
+// One estimator sample (as adaptive_sample): the sample or invalid, the torque m that acts over the
+// coming sample, the k2 in use this sample; at the period end the §4.2 re-tune rule, the new k2 acting
+// from the next sample (step's re-tune at its start).
+void PdRefChannel::adaptive_sample(bool ok, double y, double m)
+{
+    const pd::FestOut &o = fest_->step(ok, ok ? y : 0.0, m, k2_);
+    n_inv_fest_ += ok ? 0 : 1;
+    if (o.period_end) {
+        const double d = std::fabs(o.f_hat_hz - f_pub_prev_);
+        if (o.state == pd::FestState::Fault) {
+            k2_adapt_ = clamp_k2(t_.k2_cold);
+        } else if (o.confident && d * 50.0 < f_pub_prev_ && n_inv_fest_ <= t_.n_bad_max) {
+            k2_adapt_ = pd_sched_k2(t_, o.f_hat_hz);   // (clamped to [k2_min, k2_max] there)
+        }
+        f_pub_prev_ = o.f_hat_hz;
+        n_inv_fest_ = 0;
+    }
+    fest_f = o.f_hat_hz;
+    fest_word = static_cast<std::uint32_t>(o.state) | (o.confident ? 4u : 0u) | (o.gate_open ? 8u : 0u) |
+                ((o.fault & 0xFFu) << 8);
+    fest_p_a = o.P_a;
+    fest_att = o.att;
+    fest_resets = static_cast<std::uint32_t>(o.resets);
 }
 
 void PdRefChannel::init()
@@ -105,9 +161,6 @@ void PdRefChannel::init()
     src_ = t_.src;
     f_ground_ = t_.f_ground;
     k2_fixed_ = clamp_k2(t_.k2_nom);
-    k2_ = (src_ == PD_SRC_GROUND) ? pd_sched_k2(t_, f_ground_) : k2_fixed_;
-    gp_ = pd_gain_p(t_);
-    gd_ = pd_gain_d(t_, k2_);
     y_prev_ = m_last_ = m_held_ = 0.0;
     have_prev_ = false;
     same_cnt_ = 0;
@@ -115,6 +168,15 @@ void PdRefChannel::init()
     nu_ = n_bad_ = zero_run_ = 0;
     sum_ = fill_ = xbar_ = xbar_prev_ = 0.0;
     have_fill_ = have_xbar_ = false;
+    fest_.reset();
+    fest_f = fest_p_a = fest_att = 0.0;
+    fest_word = fest_resets = 0u;
+    k2_adapt_ = f_pub_prev_ = 0.0;
+    n_inv_fest_ = 0;
+    if (src_ == PD_SRC_ADAPTIVE) { adaptive_start(); }   // (the constructor refused it where unusable)
+    k2_ = (src_ == PD_SRC_GROUND) ? pd_sched_k2(t_, f_ground_) : (src_ == PD_SRC_ADAPTIVE) ? k2_adapt_ : k2_fixed_;
+    gp_ = pd_gain_p(t_);
+    gd_ = pd_gain_d(t_, k2_);
 }
 
 double PdRefChannel::clamp_k2(double k2) const { return std::fmin(std::fmax(k2, t_.k2_min), t_.k2_max); }
@@ -175,6 +237,7 @@ void PdRefChannel::note_gap(std::uint32_t n)
     const std::uint32_t k = (n <= 64u) ? n : ny + n % ny;   // the period phase n leaves (as pd_note_gap)
     for (std::uint32_t i = 0; i < k; ++i) {
         if (period(false, 0.0, h) && t_.law == PD_LAW_LITERAL) { literal_update(h); }
+        if (src_ == PD_SRC_ADAPTIVE) { adaptive_sample(false, 0.0, m_last_); }   // the plant held the last torque
     }
     miss += n;
     if (n > PD_GAP_DIFF_MAX || miss_run_ > 0u) { have_prev_ = false; }
@@ -185,7 +248,7 @@ void PdRefChannel::note_gap(std::uint32_t n)
 PdRefOut PdRefChannel::step(const PdRefIn &in)
 {
     std::uint32_t h = (static_cast<std::uint32_t>(t_.law) << 8) | (static_cast<std::uint32_t>(src_) << 10);
-    const double k2 = (src_ == PD_SRC_GROUND) ? pd_sched_k2(t_, f_ground_) : k2_fixed_;
+    const double k2 = (src_ == PD_SRC_GROUND) ? pd_sched_k2(t_, f_ground_) : (src_ == PD_SRC_ADAPTIVE) ? k2_adapt_ : k2_fixed_;
     if (std::fabs(k2 - k2_) > 0.0) {   // an exact change, as the flight compares integers
         k2_ = k2;
         gp_ = pd_gain_p(t_);
@@ -261,6 +324,12 @@ PdRefOut PdRefChannel::step(const PdRefIn &in)
             ++beta_lim;
             if ((m > 0.0 && b > 0.0) || (m < 0.0 && b < 0.0)) { m = 0.0; }
         }
+    }
+    if (src_ == PD_SRC_ADAPTIVE) {
+        adaptive_sample(ok, y, m);
+        const auto st = static_cast<std::uint32_t>(fest_->out().state);
+        h |= (st << 12) & PD_H_FEST;
+        h |= (fest_->out().state == pd::FestState::Fault) ? PD_H_FEST_FAULT : 0u;
     }
     m_last_ = m;
     health_sticky |= h;

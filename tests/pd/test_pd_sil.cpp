@@ -22,6 +22,7 @@
 #include "pd/pd_section.hpp"
 #include "scenario/scenario.hpp"
 #include "sil_run.hpp"
+#include "pd_sil_harness.hpp"
 extern "C" {
 #include "fsw_ids.h"
 #include "pd_ids.h"
@@ -31,27 +32,10 @@ extern "C" {
 
 namespace {
 
-sil::InprocResult fly(const sim::Scenario &s, const std::string &fsw)
-{
-    sil::InprocOptions o;
-    o.fsw = fsw;
-    return sil::run_inproc(s, o);
-}
-
-const host::PdMetrics &mm(const sil::InprocResult &r) { return r.metrics<host::PdMetrics>(); }
-sim::PdSetup &body(sim::Scenario &s) { return s.mission_part<sim::PdScenario>().body; }
-
-void command(sim::Scenario &s, std::uint32_t local, std::int32_t a0, std::int32_t a1 = 0, std::int32_t a2 = 0)
-{
-    sim::ScnCommand c;
-    c.t_s = 0.0;
-    c.name = "test";
-    c.cmd = static_cast<std::int32_t>(FSW_TC_ID(FSW_MISSION_HOLD, local));
-    c.args[0] = a0;
-    c.args[1] = a1;
-    c.args[2] = a2;
-    s.commands.push_back(c);
-}
+using pd_sil::body;
+using pd_sil::command;
+using pd_sil::fly;
+using pd_sil::mm;
 
 // A scenario at f_min = f with every channel displaced by x0 and the schedule at the true f (GROUND).
 sim::Scenario ground(double f, double duration_s, bool all_channels = true)

@@ -17,6 +17,31 @@ std::int32_t to_cnt(double v, double lsb)
 
 std::uint32_t sat_u32(std::int32_t v) { return (v < 0) ? 0u : static_cast<std::uint32_t>(v); }
 
+std::uint32_t to_u32(double v, int q)
+{
+    const double s = std::round(std::ldexp(v, q));
+    if (!(s > 0.0)) { return 0u; }   // also NaN
+    return (s >= 4294967295.0) ? 0xFFFFFFFFu : static_cast<std::uint32_t>(s);
+}
+
+// The estimator's double design per channel (yaw, roll, pitch): make_fest_params on the channel's nominal
+// model, the design the flight table's quantised fest block was made from (pd_analysis fest-params ->
+// sim/pd/pd_fest_quant); the reference flies that design, not a dequantisation of the block. Whether a
+// channel may use it is the flight's check of the table's block (PdChannelTable::fest_ok).
+const std::shared_ptr<const ref::pd::FestParams> &fest_design(std::size_t k)
+{
+    static const std::array<std::shared_ptr<const ref::pd::FestParams>, PD_N_CH> d = [] {
+        std::array<std::shared_ptr<const ref::pd::FestParams>, PD_N_CH> a;
+        const char *const names[PD_N_CH] = {"yaw", "roll", "pitch"};
+        for (std::size_t i = 0; i < PD_N_CH; ++i) {
+            a[i] = std::make_shared<const ref::pd::FestParams>(
+                ref::pd::make_fest_params(ref::pd::Channel::by_name(names[i])));
+        }
+        return a;
+    }();
+    return d[k];
+}
+
 }  // namespace
 
 RefPdBackend::RefPdBackend(const pd_table_t &table) : t_(table), tlm_(new fsw_tlm_t()) { (void)reset(); }
@@ -24,10 +49,25 @@ RefPdBackend::RefPdBackend(const pd_table_t &table) : t_(table), tlm_(new fsw_tl
 bool RefPdBackend::reset()
 {
     ch_.clear();
+    *tlm_ = fsw_tlm_t{};
+    tlm_->mission = FSW_MISSION_HOLD;
     for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
         pd_params_t p{};
         pd_params_of(&t_, k, &p);
-        ch_.emplace_back(ref::dequantise(p));
+        ref::PdChannelTable ct = ref::dequantise(p);
+        if ((t_.c.ch_mask & (1u << k)) == 0u) {
+            // A channel that does not fly is never stepped, so its telemetry keeps what the flight's
+            // pd_init left: the boot source's k2 (ADAPTIVE: k2_cold, GROUND: the schedule at f_ground,
+            // FIXED: k2_nom), all else zero. It needs no gain source here (as pd_table_check: an
+            // ADAPTIVE table flies pitch and roll with ch_mask 6, yaw's refused estimator never runs).
+            const double clamp_lo = ct.k2_min, clamp_hi = ct.k2_max;
+            const double k2 = (ct.src == PD_SRC_ADAPTIVE) ? std::fmin(std::fmax(ct.k2_cold, clamp_lo), clamp_hi)
+                              : (ct.src == PD_SRC_GROUND) ? ref::pd_sched_k2(ct, ct.f_ground)
+                                                          : std::fmin(std::fmax(ct.k2_nom, clamp_lo), clamp_hi);
+            tlm_->m.hold.ch[k].k2_q22 = static_cast<std::uint32_t>(std::llround(std::ldexp(k2, 22)));
+            ct.src = PD_SRC_FIXED;
+        }
+        ch_.emplace_back(ct, fest_design(k));
     }
     act_.fill(0);
     step_ = health_ = 0u;
@@ -35,8 +75,6 @@ bool RefPdBackend::reset()
     last_seq_ = -1;
     last_idx_ = -1;
     tc_ = 0u;
-    *tlm_ = fsw_tlm_t{};
-    tlm_->mission = FSW_MISSION_HOLD;
     return true;
 }
 
@@ -68,8 +106,8 @@ bool RefPdBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
         if (tc_ == PD_CMD_RESET_COUNTERS) {
             c.miss = c.stale = c.range_rej = c.rate_rej = c.period_rej = c.trq_sat = c.beta_lim = 0u;
             c.health_sticky = 0u;
-        } else if (tc_ == PD_CMD_SET_SOURCE && tc_arg_[0] >= 0 && tc_arg_[0] <= 1) {
-            (void)c.set_source(tc_arg_[0]);
+        } else if (tc_ == PD_CMD_SET_SOURCE && tc_arg_[0] >= 0 && tc_arg_[0] <= static_cast<std::int32_t>(PD_SRC_ADAPTIVE)) {
+            (void)c.set_source(tc_arg_[0]);   // refused (yaw: ADAPTIVE): the source stays
         } else if (tc_ == PD_CMD_SET_F && tc_arg_[0] >= 0 && tc_arg_[0] < 500000) {
             // the flight's uq32 of the commanded 1e-6 Hz, dequantised
             const std::uint64_t f_uhz = static_cast<std::uint32_t>(tc_arg_[0]);
@@ -130,6 +168,11 @@ bool RefPdBackend::step(const bridge::Frame &f, bridge::StepOutput &out)
             c.period_rej = r.period_rej;
             c.trq_sat_cnt = r.trq_sat;
             c.beta_lim_cnt = r.beta_lim;
+            c.fest_f_q32 = to_u32(r.fest_f, 32);
+            c.fest_word = r.fest_word;
+            c.fest_p_a_q30 = to_u32(r.fest_p_a, 30);
+            c.fest_att_q16 = to_u32(r.fest_att, 16);
+            c.fest_resets = r.fest_resets;
         }
         health_ = h;
         last_idx_ = std::max(idx, last_idx_);

@@ -2,8 +2,11 @@
 // precision (sim/pd/pd_ref) in place of the fixed-point flight code, on the same table and through the
 // same bridge and LCM nodes, so `sil run --fsw ref` gives the closed loop the fixed-point run is
 // compared with (spec 40 G5). The adapter's rules are repeated here: the channel mask, the sample
-// instants by seq (step divider, lost frames as gaps), a repeated seq counted as missing, the telecommands. Telemetry is fsw_tlm_t filled from the
-// double state (rounded to the flight formats), so every tool that reads a SIL log reads it.
+// instants by seq (step divider, lost frames as gaps), a repeated seq counted as missing, the telecommands
+// (SET_SOURCE 0..2: ADAPTIVE taken by the channels with a usable estimator, pitch and roll; yaw keeps its
+// source). Telemetry is fsw_tlm_t filled from the double state (rounded to the flight formats), the
+// estimator's fields (fest_f uq32, the fest word, P, att, FAULT count) included, so every tool that reads a
+// SIL log (hil_host/missions/pd/pd_metrics) reads it as it reads the flight's.
 #ifndef HIL_MISSIONS_PD_REF_BACKEND_HPP
 #define HIL_MISSIONS_PD_REF_BACKEND_HPP
 
