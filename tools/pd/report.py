@@ -18,7 +18,7 @@ import os
 
 import numpy as np
 
-from tools.sil.report import Key, read_log
+from tools.sil.report import Key, read_log, save_fig
 
 CH = ("yaw", "roll", "pitch")
 TORQUE_LSB_NM = 2.0 ** -20     # actuator channels 0..2 (fsw/pd/pd_iface.py)
@@ -145,11 +145,7 @@ def plots(R, m, out):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         ax.set_title("HOLD: attitude (truth)")
-        fig.tight_layout()
-        p = os.path.join(out, "attitude.png")
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        paths.append(p)
+        save_fig(fig, out, "attitude.png", paths)
         fig, ax = plt.subplots(figsize=(10, 3.5))
         for k, c in enumerate(CH):
             ax.plot(T[:, 0], T[:, 1 + TB + k], lw=0.8, label="beta %s" % c)
@@ -157,11 +153,7 @@ def plots(R, m, out):
         ax.set_ylabel("gimbal angle [rad]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-        fig.tight_layout()
-        p = os.path.join(out, "gimbal.png")
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        paths.append(p)
+        save_fig(fig, out, "gimbal.png", paths)
     if R["cmd"]:
         C = np.array(R["cmd"], dtype=float)
         fig, ax = plt.subplots(figsize=(10, 3.5))
@@ -171,11 +163,7 @@ def plots(R, m, out):
         ax.set_ylabel("gimbal torque [N m]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-        fig.tight_layout()
-        p = os.path.join(out, "torque.png")
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        paths.append(p)
+        save_fig(fig, out, "torque.png", paths)
     L = R["tlm"]
     if L is not None:
         fig, ax = plt.subplots(figsize=(10, 3))
@@ -185,11 +173,7 @@ def plots(R, m, out):
         ax.set_ylabel("k2 [s]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-        fig.tight_layout()
-        p = os.path.join(out, "k2.png")
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        paths.append(p)
+        save_fig(fig, out, "k2.png", paths)
         adaptive = [c for c in CH if np.any(L["raw"]["pd_%s_fest_f" % c] != 0)]
         if adaptive:
             tt = L["utime"] * 1e-6
@@ -207,9 +191,5 @@ def plots(R, m, out):
             ax.grid(alpha=0.3)
             ax.legend(fontsize=8)
             ax.set_title("HOLD: on-board frequency estimate (ADAPTIVE channels)")
-            fig.tight_layout()
-            p = os.path.join(out, "fest.png")
-            fig.savefig(p, dpi=110)
-            plt.close(fig)
-            paths.append(p)
+            save_fig(fig, out, "fest.png", paths)
     return paths

@@ -17,7 +17,7 @@ import os
 
 import numpy as np
 
-from tools.sil.report import Key, read_log
+from tools.sil.report import Key, read_log, save_fig
 
 TORQUE_LSB_NM = 2.0 ** -17      # actuator channels 0..2 (fsw/respin/rsp_iface.py)
 GIMBAL_RATE_LSB_RADPS = 2.0 ** -16   # actuator channels 3..6
@@ -184,15 +184,6 @@ def format_summary(m, src):
     return "\n".join(o) + "\n"
 
 
-def _save(fig, out, name, paths):
-    import matplotlib.pyplot as plt
-    fig.tight_layout()
-    p = os.path.join(out, name)
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
-    paths.append(p)
-
-
 def plots(R, m, out):
     import matplotlib
     matplotlib.use("Agg")
@@ -216,7 +207,7 @@ def plots(R, m, out):
     a2.grid(alpha=0.3)
     a2.legend(fontsize=8)
     a1.set_title("RESPIN: spin axis error")
-    _save(fig, out, "xi.png", paths)
+    save_fig(fig, out, "xi.png", paths)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
     for i, ax in enumerate("xyz"):
         a1.plot(t, st[:, TH + i], label="H_%s" % ax)
@@ -233,7 +224,7 @@ def plots(R, m, out):
     a2.set_xlabel("time [s]")
     a2.grid(alpha=0.3)
     a2.legend(fontsize=8)
-    _save(fig, out, "wheels.png", paths)
+    save_fig(fig, out, "wheels.png", paths)
     fig, ax = plt.subplots(figsize=(10, 4))
     ax.plot(t, st[:, TT], label="T (truth)")
     if L is not None:
@@ -243,7 +234,7 @@ def plots(R, m, out):
     ax.set_ylabel("energy [J]")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    _save(fig, out, "energy.png", paths)
+    save_fig(fig, out, "energy.png", paths)
     fig = plt.figure(figsize=(6, 6))
     ax = fig.add_subplot(projection="3d")
     gu = S["g"] / np.maximum(S["gn"], 1e-12)[:, None]
@@ -253,7 +244,7 @@ def plots(R, m, out):
     ax.set_ylabel("g_y")
     ax.set_zlabel("g_z")
     ax.set_title("G / |G| in body axes (targets +-e_y)")
-    _save(fig, out, "sphere.png", paths)
+    save_fig(fig, out, "sphere.png", paths)
     C = np.array(R["cmd"], dtype=float) if R["cmd"] else np.zeros((0, 8))
     if len(C) and np.any(C[:, 4:8] != 0):
         # gyrodines: the gimbal rate commands against u_max and the singularity measure m_s
@@ -272,5 +263,5 @@ def plots(R, m, out):
         a2.set_xlabel("time [s]")
         a2.grid(alpha=0.3)
         a2.legend(fontsize=8)
-        _save(fig, out, "gyrodines.png", paths)
+        save_fig(fig, out, "gyrodines.png", paths)
     return paths

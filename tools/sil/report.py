@@ -121,6 +121,16 @@ def reason_str(mission, word):
 
 # -------------------------------------------------------------------------------- reading
 
+def save_fig(fig, out, name, paths):
+    """A mission report's figure: laid out, written as OUT/NAME at 110 dpi, closed, its path appended."""
+    import matplotlib.pyplot as plt
+    fig.tight_layout()
+    p = os.path.join(out, name)
+    fig.savefig(p, dpi=110)
+    plt.close(fig)
+    paths.append(p)
+
+
 def read_log(path, lcm_py, mission, handlers=None):
     """One pass over the log. handlers: {channel: f(msg)} for the mission's channels (msg decoded
     with the channel's type). GNC_TLM frames in the mission's layout become the telemetry series
