@@ -158,7 +158,7 @@ fsw_rc_t pd_params_check(const pd_params_t *p, uint32_t *why)
         w = pd_check_common(&p->c);
         w |= pd_check_gains(p, (w & PD_WHY_PERIOD) == 0u);
         if ((p->c.src == (uint8_t)PD_SRC_ADAPTIVE) && (pd_fest_check(&p->g.fest) != 0u)) {
-            w |= PD_WHY_MODE;   /* no usable estimator block on this channel (yaw: not ported) */
+            w |= PD_WHY_MODE;   /* no usable estimator block on this channel */
         }
         if (w == 0u) {
             rc = FSW_OK;

@@ -61,6 +61,24 @@
 #define FE_2P40                 1099511627776
 #define FE_ONE_Q16              65536u
 #define FE_HALF_Q30             536870912u   /* the rounding half of a q30 product */
+/* yaw (n_sec = 2): the line logic of the reference (FestParams, "yaw") */
+#define FE_INV_MODE_RATIO_Q30   617093002u   /* 1 / 1.74, yaw's mode-1 / mode-2 ratio (Channel::yaw):
+                                                section 2's start below section 1 and the high-pass
+                                                line (hp_ref_scale) */
+#define FE_INV_SEC2_HI_Q30      488064465u   /* section 2 searches [f1 / 2.2, ... */
+#define FE_INV_SEC2_LO_Q30      825955249u   /* ... f1 / 1.3] */
+#define FE_SEC2_COMOVE_DK       21474836     /* 0.02: co-motion while kappa_2 < its target - this */
+#define FE_KAPPA_PASS3          1041529569   /* 0.97, the third pass's pole radius ... */
+#define FE_KAPPA_PASS3_SQ       1010283682   /* ... and its square */
+#define FE_TWO_ATT1_SQ          429497       /* two lines: section 1 leaves >= 0.02 (rms) ... */
+#define FE_TWO_ATT2_SQ          268435456    /* ... and section 2 leaves <= 0.5 */
+#define FE_PAIR_ATT_SQ          96636764     /* pair accepted while the cascade leaves <= 0.3 (rms) */
+#define FE_SINGLE_ATT_SQ        96636764     /* a single line is one section 1 notches to <= 0.3 */
+#define FE_SINGLE_MAX_Q32       66571993u    /* a single line below 0.0155 Hz is mode 1 */
+#define FE_VER_TOL_Q30          42949673u    /* ... or within 4 % of the last verified lower line */
+#define FE_ZETA_ENV_TY_Q30      188902528u   /* zeta_single 2 pi PD_FEST_ENV Ty = 0.007 2 pi 16 0.25 s */
+#define FE_N_PROOF              50u          /* decay proof: gate open >= 50 periods ... */
+#define FE_F_PROOF_MIN_Q32      171798692u   /* ... for lines >= 0.04 Hz */
 
 static int64_t fe_mul(int64_t a, int32_t b, uint32_t n, fx_status_t *st)
 {
@@ -95,6 +113,12 @@ static int32_t fe_i32(int64_t v)
 static uint32_t fe_u32(int64_t v)
 {
     return (uint32_t)fe_clamp64(v, 0, (int64_t)UINT32_MAX);
+}
+
+/* the section count, bounded by the array whatever the table says (pd_fest_check refuses others) */
+static uint32_t fe_nsec(const pd_fest_params_t *p)
+{
+    return ((uint32_t)p->n_sec == PD_FEST_NSEC) ? PD_FEST_NSEC : 1u;
 }
 
 /* the regressor count, bounded by the arrays whatever the table says (pd_fest_check refuses others) */
@@ -211,8 +235,8 @@ static bool fe_cinv_ok(const pd_fest_params_t *p)
 uint32_t pd_fest_check(const pd_fest_params_t *p)
 {
     uint32_t why;
-    if (p->n_sec != 1u) {
-        why = 1u;                               /* yaw's two sections are not ported */
+    if ((p->n_sec != 1u) && (p->n_sec != PD_FEST_NSEC)) {
+        why = 1u;
     } else if ((p->n_reg != 0u) && (p->n_reg != PD_FEST_NR)) {
         why = 2u;
     } else if ((p->inv_m_q30 < 536870912u) || (p->inv_m_q30 > 1073741824u)) {
@@ -277,13 +301,31 @@ static void fe_reset(pd_fest_t *s, bool keep_predictor)
             s->pth_q27[r][i] = (r == i) ? FE_P_TH0_Q27 : 0;
         }
     }
-    s->p_q30 = FE_P0;
-    s->kap_q30 = FE_KAPPA0;
-    s->s1_q24 = 0;
-    s->s2_q24 = 0;
-    s->ms_s_q32 = 0;
-    s->ms_in_q32 = 0;
-    s->ms_out_q32 = 0;
+    for (i = 0u; i < PD_FEST_NSEC; i++) {
+        pd_fest_sec_t *c = &s->sec[i];
+        c->p_q30 = FE_P0;
+        c->kap_q30 = FE_KAPPA0;
+        c->s1_q24 = 0;
+        c->s2_q24 = 0;
+        c->ms_s_q32 = 0;
+        c->ms_in_q32 = 0;
+        c->ms_out_q32 = 0;
+        c->f_obs_q32 = 0u;
+        c->a_q29 = 0;  /* set by pd_fest_step on the first sample after a reset (it needs the table's m_ch) */
+    }
+    s->d1_q24 = 0;
+    s->d2_q24 = 0;
+    s->q1_q24 = 0;
+    s->q2_q24 = 0;
+    s->two = false;
+    s->slow_ok = false;
+    s->n_single = 0u;
+    s->n_excite = 0u;
+    s->f_lo_ver_q32 = 0u;
+    s->env_i = 0u;
+    for (i = 0u; i < PD_FEST_ENV; i++) {
+        s->env_q16[i] = 0u;
+    }
     s->f_obs_q32 = 0u;
     s->f_raw_q32 = FE_F0;
     s->f_prev_q32 = FE_F0;
@@ -300,8 +342,6 @@ static void fe_reset(pd_fest_t *s, bool keep_predictor)
     s->att_q16 = FE_ONE_Q16;
     s->r_e_q16 = 0u;
     s->kappa_q30 = 0u;
-    /* a_q29 is set by pd_fest_step on the first sample after a reset (it needs the table's m_ch) */
-    s->a_q29 = 0;
     s->a_set = false;
 }
 
@@ -324,11 +364,13 @@ void pd_fest_init(pd_fest_t *s)
     fe_reset(s, false);
 }
 
-/* the notch's starting point: the prior f0 seen through the channel's m_ch */
+/* the notches' starting points: the prior f0 seen through the channel's m_ch; yaw's section 2 starts
+   below section 1, where mode 1 sits when section 1 holds mode 2 */
 static void fe_start_notch(pd_fest_t *s, const pd_fest_params_t *p, fx_status_t *st)
 {
-    const int64_t f_obs0 = fx_div64_shl((int64_t)FE_F0, 30u, (uint64_t)p->inv_m_q30, st);
-    s->a_q29 = fe_a_of_f(fe_u32(f_obs0));
+    const uint32_t f_obs0 = fe_u32(fx_div64_shl((int64_t)FE_F0, 30u, (uint64_t)p->inv_m_q30, st));
+    s->sec[0].a_q29 = fe_a_of_f(f_obs0);
+    s->sec[1].a_q29 = fe_a_of_f((uint32_t)((((uint64_t)f_obs0 * FE_INV_MODE_RATIO_Q30) + FE_HALF_Q30) >> 30));
 }
 
 /* ---- per sample: predictor, regressors, noise reference, anti-alias and block sums ------------- */
@@ -491,25 +533,57 @@ static void fe_theta(pd_fest_t *s, const int64_t *psi, uint32_t rms_s_q16, int64
     }
 }
 
-/* the notch's RLS on a and its kappa schedule (reference step_td, "6") */
-static void fe_adapt_notch(pd_fest_t *s, const pd_fest_params_t *p, int64_t phi, int64_t et, fx_status_t *st)
+/* kappa target 1 - beta w Td within [kappa_max, kappa_hi], w Td in q30 from a section's last f_obs */
+static int64_t fe_kappa_target(const pd_fest_params_t *p, uint32_t f_obs_q32, fx_status_t *st)
 {
-    const int64_t phi2_q30 = fe_mul(phi * phi, (int32_t)s->p_q30, 48u, st);  /* phi^2 P: q48 x q30 */
+    const int64_t w_td = (int64_t)(((uint64_t)f_obs_q32 * FE_TWO_PI_Q28) >> 30);
+    return fe_clamp64(fe_sub((int64_t)FE_ONE_Q30, fe_mul(w_td, (int32_t)p->beta_kappa_q30, 30u, st), st),
+                      (int64_t)FE_KAPPA_MAX, (int64_t)p->kappa_hi_q30);
+}
+
+/* f_obs x scale (q30), rounded */
+static uint32_t fe_fscale(uint32_t f_q32, uint32_t scale_q30)
+{
+    return (uint32_t)((((uint64_t)f_q32 * scale_q30) + FE_HALF_Q30) >> 30);
+}
+
+/* yaw's section 2 while its notch anneals: keep its ratio to section 1 (whose a has adapted this Td) */
+static void fe_comove(pd_fest_t *s, const pd_fest_params_t *p, fx_status_t *st)
+{
+    const uint32_t f1_old = s->sec[0].f_obs_q32;
+    if ((f1_old > 0u) && ((int64_t)s->sec[1].kap_q30 < (fe_kappa_target(p, s->sec[1].f_obs_q32, st) - FE_SEC2_COMOVE_DK))) {
+        const uint64_t f1_new = (uint64_t)fe_f_of_a(s->sec[0].a_q29, st);
+        const uint64_t f2 = fx_udiv_rnd64((uint64_t)s->sec[1].f_obs_q32 * f1_new, (uint64_t)f1_old);
+        s->sec[1].a_q29 = fe_a_of_f((f2 < (uint64_t)UINT32_MAX) ? (uint32_t)f2 : UINT32_MAX);
+    }
+}
+
+/* a section's RLS on a and its kappa schedule (reference step_td, "6") */
+static void fe_adapt_notch(pd_fest_t *s, const pd_fest_params_t *p, uint32_t i, int64_t phi, int64_t et,
+                           fx_status_t *st)
+{
+    pd_fest_sec_t *c = &s->sec[i];
+    const int64_t phi2_q30 = fe_mul(phi * phi, (int32_t)c->p_q30, 48u, st);  /* phi^2 P: q48 x q30 */
     const uint64_t den = (uint64_t)FE_LAMBDA_Q30 + (uint64_t)phi2_q30;
-    const int64_t pn = (int64_t)fx_udiv_rnd64((uint64_t)s->p_q30 << 30, den);
-    const int64_t a_lo = (int64_t)fe_a_of_f(FE_FOBS_LO);
-    const int64_t a_hi = (int64_t)fe_a_of_f(FE_FOBS_HI);
+    const int64_t pn = (int64_t)fx_udiv_rnd64((uint64_t)c->p_q30 << 30, den);
+    int64_t a_lo;
+    int64_t a_hi;
     int64_t t;
     int64_t k_tgt;
-    int64_t w_td;
-    s->p_q30 = (uint32_t)fe_clamp64(pn, (int64_t)FE_P_MIN, (int64_t)FE_P_MAX);
-    t = fe_mul(et, (int32_t)s->p_q30, 30u, st);                      /* P et, q24 */
-    s->a_q29 = (int32_t)fe_clamp64(fe_sub((int64_t)s->a_q29, fe_mul(t, (int32_t)phi, 19u, st), st), a_lo, a_hi);
-    /* kappa target 1 - beta w Td within [kappa_max, kappa_hi], w Td in q30 from the last f_obs */
-    w_td = (int64_t)(((uint64_t)s->f_obs_q32 * FE_TWO_PI_Q28) >> 30);
-    k_tgt = fe_clamp64(fe_sub((int64_t)FE_ONE_Q30, fe_mul(w_td, (int32_t)p->beta_kappa_q30, 30u, st), st),
-                       (int64_t)FE_KAPPA_MAX, (int64_t)p->kappa_hi_q30);
-    s->kap_q30 = fe_u32(fe_sub(k_tgt, fe_mul(k_tgt - (int64_t)s->kap_q30, FE_RHO_KAPPA, 30u, st), st));
+    c->p_q30 = (uint32_t)fe_clamp64(pn, (int64_t)FE_P_MIN, (int64_t)FE_P_MAX);
+    if (i == 0u) {
+        a_lo = (int64_t)fe_a_of_f(FE_FOBS_LO);
+        a_hi = (int64_t)fe_a_of_f(FE_FOBS_HI);
+    } else {
+        /* section 2 searches [f1 / 2.2, f1 / 1.3] below section 1's line of the last Td */
+        fe_comove(s, p, st);
+        a_lo = (int64_t)fe_a_of_f(fe_fscale(s->sec[0].f_obs_q32, FE_INV_SEC2_HI_Q30));
+        a_hi = (int64_t)fe_a_of_f(fe_fscale(s->sec[0].f_obs_q32, FE_INV_SEC2_LO_Q30));
+    }
+    t = fe_mul(et, (int32_t)c->p_q30, 30u, st);                      /* P et, q24 */
+    c->a_q29 = (int32_t)fe_clamp64(fe_sub((int64_t)c->a_q29, fe_mul(t, (int32_t)phi, 19u, st), st), a_lo, a_hi);
+    k_tgt = fe_kappa_target(p, c->f_obs_q32, st);
+    c->kap_q30 = fe_u32(fe_sub(k_tgt, fe_mul(k_tgt - (int64_t)c->kap_q30, FE_RHO_KAPPA, 30u, st), st));
 }
 
 /* f_hat = f_obs / (m_ch c(f, k2)), c evaluated at the once-corrected estimate */
@@ -522,7 +596,125 @@ static void fe_f_update(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22
     s->f_raw_q32 = (uint32_t)((fh < FE_F_LO) ? FE_F_LO : ((fh > FE_F_HI) ? FE_F_HI : fh));
 }
 
+/* yaw: a pair's ratio hi / lo in [1.5, 2.0], without a division */
+static bool fe_ratio_ok(uint32_t lo, uint32_t hi)
+{
+    return (((uint64_t)hi * 2u) >= ((uint64_t)lo * 3u)) && ((uint64_t)hi <= ((uint64_t)lo * 2u));
+}
+
+/* ms_out <= att^2 ms_in (att^2 in q30) */
+static bool fe_att_le(int64_t ms_out, int64_t ms_in, int32_t att_sq_q30, fx_status_t *st)
+{
+    return ms_out <= fe_mul(ms_in, att_sq_q30, 30u, st);
+}
+
+/* yaw: a single line is mode 1 if it is a real line (section 1 notches it) and (a) too low to be
+   mode 2, (b) continues the lower line of a verified pair, or (c) passed the decay proof */
+static bool fe_single_proof(const pd_fest_t *s, uint32_t f_q32, fx_status_t *st)
+{
+    const bool line = fe_att_le(s->sec[0].ms_out_q32, s->sec[0].ms_in_q32, FE_SINGLE_ATT_SQ, st);
+    const uint32_t v = s->f_lo_ver_q32;
+    const uint32_t d = (f_q32 > v) ? (f_q32 - v) : (v - f_q32);
+    const bool low = f_q32 <= FE_SINGLE_MAX_Q32;
+    const bool cont = (v > 0u) && ((uint64_t)d <= (((uint64_t)v * FE_VER_TOL_Q30) >> 30));
+    return line && (low || cont || s->slow_ok);
+}
+
+/* a second pass of section 1's notch (a, kappa a and kappa^2 in q29 / q29 / q30) over in, states x1, x2 */
+static int64_t fe_pass(int64_t in, int32_t a_q29, int64_t ka, int64_t kk, int64_t *x1, int64_t *x2, fx_status_t *st)
+{
+    const int64_t t0 = fe_sub(fe_sub(in, fe_mul(*x1, (int32_t)ka, 29u, st), st), fe_mul(*x2, (int32_t)kk, 30u, st), st);
+    const int64_t out = fx_add64_sat(fx_add64_sat(t0, fe_mul(*x1, a_q29, 29u, st), st), *x2, st);
+    *x2 = *x1;
+    *x1 = t0;
+    return out;
+}
+
+/* one notch section over in (q24) at this Td; returns what the next section sees */
+static int64_t fe_section(pd_fest_t *s, const pd_fest_params_t *p, uint32_t i, int64_t in, const int64_t *psi,
+                          bool adapt, fx_status_t *st)
+{
+    pd_fest_sec_t *c = &s->sec[i];
+    const int32_t a = c->a_q29;
+    const int64_t ka = fe_mul((int64_t)c->kap_q30, a, 30u, st);                   /* kappa a, q29 */
+    const int64_t kk = fe_mul((int64_t)c->kap_q30, (int32_t)c->kap_q30, 30u, st);  /* kappa^2, q30 */
+    const int64_t s0 = fe_sub(fe_sub(in, fe_mul(c->s1_q24, (int32_t)ka, 29u, st), st),
+                              fe_mul(c->s2_q24, (int32_t)kk, 30u, st), st);
+    const int64_t eps = fx_add64_sat(fx_add64_sat(s0, fe_mul(c->s1_q24, a, 29u, st), st), c->s2_q24, st);
+    int64_t out = eps;
+    uint32_t rms_s;
+    int64_t phi;
+    int64_t et;
+    c->ms_s_q32 = fe_ema(c->ms_s_q32, fe_sq24(s0, st), FE_ONE_M_LAMBDA_S, st);
+    rms_s = fe_sqrt_q32(c->ms_s_q32);
+    rms_s = (rms_s > FE_RMS_S_MIN_Q16) ? rms_s : FE_RMS_S_MIN_Q16;
+    phi = (int64_t)fe_i32(fx_div64_shl(c->s1_q24, 16u, (uint64_t)rms_s, st));   /* q24, |.| <= 128 */
+    et = (int64_t)fe_i32(fx_div64_shl(eps, 16u, (uint64_t)rms_s, st));
+    if (adapt && (i == 0u) && (fe_nreg(p) > 0u)) {
+        fe_theta(s, psi, rms_s, et, st);
+    }
+    if (adapt) {
+        fe_adapt_notch(s, p, i, phi, et, st);
+    }
+    c->ms_in_q32 = fe_ema(c->ms_in_q32, fe_sq24(in, st), FE_ONE_M_LAMBDA_ATT, st);
+    c->ms_out_q32 = fe_ema(c->ms_out_q32, fe_sq24(eps, st), FE_ONE_M_LAMBDA_ATT, st);
+    c->s2_q24 = c->s1_q24;
+    c->s1_q24 = s0;
+    if ((i == 0u) && (fe_nsec(p) == PD_FEST_NSEC)) {
+        /* yaw: section 2 sees section 1's line notched twice more, the third pass wider (kappa 0.97),
+           both with section 1's coefficients of this Td before its update */
+        const int64_t ka3 = fe_mul((int64_t)FE_KAPPA_PASS3, a, 30u, st);
+        out = fe_pass(eps, a, ka, kk, &s->d1_q24, &s->d2_q24, st);
+        out = fe_pass(out, a, ka3, FE_KAPPA_PASS3_SQ, &s->q1_q24, &s->q2_q24, st);
+    }
+    return out;
+}
+
+/* step 7: the sections' lines, the reported line and (yaw) whether it is mode 1; f_hat from it */
+static void fe_lines(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22, bool adapt, fx_status_t *st)
+{
+    uint32_t f_rep;
+    bool line_ok = true;
+    uint32_t i;
+    for (i = 0u; i < fe_nsec(p); i++) {
+        s->sec[i].f_obs_q32 = fe_f_of_a(s->sec[i].a_q29, st);
+    }
+    s->f_obs_q32 = s->sec[0].f_obs_q32;
+    f_rep = s->sec[0].f_obs_q32;
+    if (fe_nsec(p) == PD_FEST_NSEC) {
+        const pd_fest_sec_t *c1 = &s->sec[0];
+        const pd_fest_sec_t *c2 = &s->sec[1];
+        const uint32_t lo = (c1->f_obs_q32 < c2->f_obs_q32) ? c1->f_obs_q32 : c2->f_obs_q32;
+        const uint32_t hi = (c1->f_obs_q32 < c2->f_obs_q32) ? c2->f_obs_q32 : c1->f_obs_q32;
+        /* two lines: section 1 leaves a real line for section 2, which notches most of it */
+        s->two = (c1->ms_out_q32 >= fe_mul(c1->ms_in_q32, FE_TWO_ATT1_SQ, 30u, st)) &&
+                 fe_att_le(c2->ms_out_q32, c2->ms_in_q32, FE_TWO_ATT2_SQ, st);
+        if (s->two) {
+            /* the pair, judged once section 2 has narrowed and while the cascade removes most of
+               the residual */
+            f_rep = lo;
+            line_ok = fe_ratio_ok(lo, hi) && (c2->kap_q30 >= FE_KAPPA_CONF) &&
+                      fe_att_le(c2->ms_out_q32, c1->ms_in_q32, FE_PAIR_ATT_SQ, st);
+        } else {
+            line_ok = fe_single_proof(s, f_rep, st);
+        }
+    }
+    s->f_rep_q32 = f_rep;
+    s->f_moved = s->f_moved || (adapt && line_ok);
+    if (adapt && line_ok) {
+        fe_f_update(s, p, k2_q22);
+    }
+}
+
 /* ---- per Td: residual, high-pass, gate, normalisation, notch, frequency ------------------------- */
+/* the high-pass line: the reported line (pitch, roll), section 1's / 1.74 (yaw), floored */
+static uint32_t fe_hp_line(const pd_fest_t *s, const pd_fest_params_t *p, fx_status_t *st)
+{
+    const uint32_t f = (fe_nsec(p) == PD_FEST_NSEC)
+                           ? fe_fscale(fe_f_of_a(s->sec[0].a_q29, st), FE_INV_MODE_RATIO_Q30) : s->f_rep_q32;
+    return (f > p->f_hp_min_q32) ? f : p->f_hp_min_q32;
+}
+
 static void fe_td(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22, fx_status_t *st)
 {
     const bool have = s->blk_valid > 0u;
@@ -532,21 +724,14 @@ static void fe_td(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22, fx_s
     int64_t en;
     int64_t en2;
     int64_t den_n;
-    int64_t u;
+    int64_t in;
     int64_t psi[PD_FEST_NR] = {0, 0};
-    int64_t s0;
-    int64_t eps;
-    int64_t phi;
-    int64_t et;
-    uint32_t rms_s;
     uint32_t r_n;
     uint32_t f_hp;
     int32_t lam_n;
     int64_t lam_rel;
     uint32_t r;
     bool adapt;
-    const int64_t ka = fe_mul((int64_t)s->kap_q30, s->a_q29, 30u, st);    /* kappa a, q29 */
-    const int64_t kk = fe_mul((int64_t)s->kap_q30, (int32_t)s->kap_q30, 30u, st);  /* kappa^2, q30 */
     if (have) {
         s->e_d = fx_div64_shl(s->blk_sum, 0u, (uint64_t)s->blk_valid, st);
         for (r = 0u; r < n_reg; r++) {
@@ -558,7 +743,7 @@ static void fe_td(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22, fx_s
         v_d = fe_sub(v_d, fe_mul(s->phi_d[r], s->theta_q30[r], 30u, st), st);
     }
     /* high-pass: rho = 1 - alpha 2 pi f_hp Td */
-    f_hp = (s->f_rep_q32 > p->f_hp_min_q32) ? s->f_rep_q32 : p->f_hp_min_q32;
+    f_hp = fe_hp_line(s, p, st);
     {
         /* alpha f_hp <= 0.5 x 0.3 Hz: w = 2 pi alpha f_hp Td < 1 in q30, rho in (0, 1] */
         const uint64_t af_q30 = ((uint64_t)p->alpha_hp_q30 * f_hp) >> 32;
@@ -593,43 +778,31 @@ static void fe_td(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22, fx_s
     s->ms_n_q32 = fe_ema(s->ms_n_q32, en2, FE_ONE_Q30 - lam_n, st);
     r_n = fe_sqrt_q32(s->ms_n_q32);
     den_n = (int64_t)((r_n > s->sig_ref_q16) ? r_n : s->sig_ref_q16);   /* >= 2^15 */
-    u = fe_clamp64(fx_div64_shl(en, 24u, (uint64_t)den_n, st), -FE_U_MAX_Q24, FE_U_MAX_Q24);
+    in = fe_clamp64(fx_div64_shl(en, 24u, (uint64_t)den_n, st), -FE_U_MAX_Q24, FE_U_MAX_Q24);
     adapt = have && s->gate && ((s->state == (uint8_t)PD_FEST_ACQUIRE) || (s->state == (uint8_t)PD_FEST_TRACK));
-    /* the regressors through the notch (its a, kappa before this update) */
-    for (r = 0u; r < n_reg; r++) {
-        const int64_t pn16 = fx_div64_shl(s->phi_d[r], 16u, (uint64_t)sy, st);
-        const int64_t phin = fx_div64_shl(pn16, 24u, (uint64_t)den_n, st);
-        const int64_t r0 = fe_sub(fe_sub(phin, fe_mul(s->r1_q24[r], (int32_t)ka, 29u, st), st),
-                                  fe_mul(s->r2_q24[r], (int32_t)kk, 30u, st), st);
-        psi[r] = fx_add64_sat(fx_add64_sat(r0, fe_mul(s->r1_q24[r], s->a_q29, 29u, st), st), s->r2_q24[r], st);
-        s->r2_q24[r] = s->r1_q24[r];
-        s->r1_q24[r] = r0;
+    /* the regressors through section 1's notch (its a, kappa before this update) */
+    {
+        const pd_fest_sec_t *c = &s->sec[0];
+        const int64_t ka = fe_mul((int64_t)c->kap_q30, c->a_q29, 30u, st);
+        const int64_t kk = fe_mul((int64_t)c->kap_q30, (int32_t)c->kap_q30, 30u, st);
+        for (r = 0u; r < n_reg; r++) {
+            const int64_t pn16 = fx_div64_shl(s->phi_d[r], 16u, (uint64_t)sy, st);
+            const int64_t phin = fx_div64_shl(pn16, 24u, (uint64_t)den_n, st);
+            const int64_t r0 = fe_sub(fe_sub(phin, fe_mul(s->r1_q24[r], (int32_t)ka, 29u, st), st),
+                                      fe_mul(s->r2_q24[r], (int32_t)kk, 30u, st), st);
+            psi[r] = fx_add64_sat(fx_add64_sat(r0, fe_mul(s->r1_q24[r], c->a_q29, 29u, st), st), s->r2_q24[r], st);
+            s->r2_q24[r] = s->r1_q24[r];
+            s->r1_q24[r] = r0;
+        }
     }
-    /* the notch section */
-    s0 = fe_sub(fe_sub(u, fe_mul(s->s1_q24, (int32_t)ka, 29u, st), st), fe_mul(s->s2_q24, (int32_t)kk, 30u, st), st);
-    eps = fx_add64_sat(fx_add64_sat(s0, fe_mul(s->s1_q24, s->a_q29, 29u, st), st), s->s2_q24, st);
-    s->ms_s_q32 = fe_ema(s->ms_s_q32, fe_sq24(s0, st), FE_ONE_M_LAMBDA_S, st);
-    rms_s = fe_sqrt_q32(s->ms_s_q32);
-    rms_s = (rms_s > FE_RMS_S_MIN_Q16) ? rms_s : FE_RMS_S_MIN_Q16;
-    phi = (int64_t)fe_i32(fx_div64_shl(s->s1_q24, 16u, (uint64_t)rms_s, st));   /* q24, |.| <= 128 */
-    et = (int64_t)fe_i32(fx_div64_shl(eps, 16u, (uint64_t)rms_s, st));
-    if (adapt && (n_reg > 0u)) {
-        fe_theta(s, psi, rms_s, et, st);
+    /* the notch sections, cascaded (two call sites, not a loop: -Os then keeps fe_section out of line,
+       and pd_fest_step's frame under the 256-byte per-function budget of the M3 build) */
+    in = fe_section(s, p, 0u, in, psi, adapt, st);
+    if (fe_nsec(p) == PD_FEST_NSEC) {
+        (void)fe_section(s, p, 1u, in, psi, adapt, st);
     }
-    if (adapt) {
-        fe_adapt_notch(s, p, phi, et, st);
-    }
-    s->ms_in_q32 = fe_ema(s->ms_in_q32, fe_sq24(u, st), FE_ONE_M_LAMBDA_ATT, st);
-    s->ms_out_q32 = fe_ema(s->ms_out_q32, fe_sq24(eps, st), FE_ONE_M_LAMBDA_ATT, st);
-    s->s2_q24 = s->s1_q24;
-    s->s1_q24 = s0;
     /* frequency (frozen outside ACQUIRE / TRACK) */
-    s->f_obs_q32 = fe_f_of_a(s->a_q29, st);
-    s->f_rep_q32 = s->f_obs_q32;
-    s->f_moved = s->f_moved || adapt;
-    if (adapt) {
-        fe_f_update(s, p, k2_q22);
-    }
+    fe_lines(s, p, k2_q22, adapt, st);
 }
 
 static void fe_enter_hold(pd_fest_t *s, bool held_conf)
@@ -645,8 +818,9 @@ static uint32_t fe_inc(uint32_t n)
     return (n < FE_N_MAX) ? (n + 1u) : FE_N_MAX;
 }
 
-/* the state machine of a period end that raised no fault */
-static void fe_transition(pd_fest_t *s, bool conf_ok, bool fading, bool keep)
+/* the state machine of a period end that raised no fault; other_line (yaw): the residual is still
+   strong while the reported line fades, so another line has taken over: re-acquire, do not hold */
+static void fe_transition(pd_fest_t *s, bool conf_ok, bool fading, bool keep, bool other_line)
 {
     if (s->state == (uint8_t)PD_FEST_ACQUIRE) {
         if (!s->gate) {
@@ -658,9 +832,9 @@ static void fe_transition(pd_fest_t *s, bool conf_ok, bool fading, bool keep)
             /* still acquiring */
         }
     } else if (s->state == (uint8_t)PD_FEST_TRACK) {
-        if (!s->gate || fading) {
+        if (!s->gate || (fading && !other_line)) {
             fe_enter_hold(s, true);
-        } else if (!keep) {
+        } else if (fading || !keep) {
             s->state = (uint8_t)PD_FEST_ACQUIRE;
             s->n_stable = 0u;
         } else {
@@ -699,7 +873,80 @@ static uint32_t fe_faults(const pd_fest_t *s, uint32_t n_y, bool jump, bool nume
     return fault;
 }
 
-static void fe_period(pd_fest_t *s, uint32_t n_y)
+/* yaw, per period: the residual envelope ring, the single-line decay proof; returns tone_ok */
+static bool fe_yaw_period(pd_fest_t *s, uint32_t n_y, fx_status_t *st)
+{
+    uint32_t r_old = 0u;  /* the envelope's peak over the window (a growing start-up envelope must not pass) */
+    uint32_t i;
+    bool tone_ok;
+    s->env_q16[s->env_i] = s->r_e_q16;
+    s->env_i = ((s->env_i + 1u) < PD_FEST_ENV) ? (s->env_i + 1u) : 0u;
+    for (i = 0u; i < PD_FEST_ENV; i++) {
+        r_old = (s->env_q16[i] > r_old) ? s->env_q16[i] : r_old;
+    }
+    if (s->two) {
+        const uint32_t f1 = s->sec[0].f_obs_q32;
+        const uint32_t f2 = s->sec[1].f_obs_q32;
+        tone_ok = (f1 < f2) ? fe_ratio_ok(f1, f2) : fe_ratio_ok(f2, f1);
+        s->n_single = 0u;
+        s->slow_ok = false;
+    } else {
+        /* decay proof: r_old <= r_e (1 + x + x^2 / 2), x = zeta 2 pi f PD_FEST_ENV n_y Ty, i.e. the
+           envelope decays no faster than a mode of damping zeta_single; x clamped at 1 (n_y 16 and
+           f <= 0.3 Hz: x <= 0.85) so that r_e (1 + x + x^2 / 2) < 2^32 x 2^32 */
+        const uint64_t x0 = (((uint64_t)s->f_rep_q32 * FE_ZETA_ENV_TY_Q30) >> 32) * n_y;
+        const uint64_t x = (x0 < (uint64_t)FE_ONE_Q30) ? x0 : (uint64_t)FE_ONE_Q30;
+        const uint64_t poly = (uint64_t)FE_ONE_Q30 + x + ((x * x) >> 31);
+        s->n_single = fe_inc(s->n_single);
+        s->slow_ok = (s->n_single >= PD_FEST_ENV) && (s->n_excite >= FE_N_PROOF) &&
+                     (s->f_rep_q32 >= FE_F_PROOF_MIN_Q32) && (r_old > 0u) &&
+                     (((uint64_t)r_old << 30) <= ((uint64_t)s->r_e_q16 * poly));
+        tone_ok = fe_single_proof(s, s->f_rep_q32, st);
+    }
+    return tone_ok;
+}
+
+/* the period end's state decision: FAULT handling, or the transitions of a fault-free period */
+static void fe_decide(pd_fest_t *s, uint32_t fault, bool numeric, bool conf_ok, bool keep, bool yaw)
+{
+    if (s->state == (uint8_t)PD_FEST_FAULT) {
+        /* one period in FAULT (k2_cold applied by the law), then ACQUIRE at f0; the predictor is kept
+           unless a numeric fault, or a second RESID FAULT since the last TRACK, says its rates are wrong
+           (RESID zeroes the residual, so the injection could never correct them) */
+        const bool keep_pred = (!numeric) && (s->resid_run < 2u);
+        s->resid_run = keep_pred ? s->resid_run : 0u;
+        fe_reset(s, keep_pred);
+    } else if (fault != 0u) {
+        s->state = (uint8_t)PD_FEST_FAULT;
+        s->fault = fault;
+        fx_cnt_inc(&s->resets);
+        s->resid_run = ((fault & PD_FEST_F_RESID) != 0u) ? fe_inc(s->resid_run) : 0u;
+    } else {
+        const bool other_line = yaw && ((uint64_t)s->r_e_q16 >= ((uint64_t)FE_GATE_ON * s->sig_ref_q16));
+        fe_transition(s, conf_ok, s->att_q16 > FE_ATT_LOSE_Q16, keep, other_line);
+    }
+    if (yaw && s->two && (s->state == (uint8_t)PD_FEST_TRACK)) {
+        s->f_lo_ver_q32 = s->f_rep_q32;   /* the lower line of a verified pair */
+    }
+}
+
+/* outputs of the period end; the published f_hat moves in TRACK only by >= 0.5 % */
+static void fe_publish(pd_fest_t *s)
+{
+    const uint64_t fr = (uint64_t)s->f_raw_q32;
+    const uint64_t fpub = (uint64_t)s->f_hat_q32;
+    const uint64_t d = (fr > fpub) ? (fr - fpub) : (fpub - fr);
+    s->f_prev_q32 = s->f_raw_q32;
+    s->confident = s->state == (uint8_t)PD_FEST_TRACK;
+    s->hold_valid = (s->state == (uint8_t)PD_FEST_HOLD) && s->held_conf;
+    if (((d * 1000u) >= (fpub * FE_PUB_HYST_PERMILLE)) || !s->confident) {
+        s->f_hat_q32 = s->f_raw_q32;
+    }
+    s->p_a_q30 = s->sec[0].p_q30;
+    s->kappa_q30 = s->sec[0].kap_q30;
+}
+
+static void fe_period(pd_fest_t *s, const pd_fest_params_t *p, uint32_t n_y)
 {
     const uint32_t f = s->f_raw_q32;
     const uint64_t fp = (uint64_t)s->f_prev_q32;              /* >= f_lo > 0 */
@@ -707,54 +954,38 @@ static void fe_period(pd_fest_t *s, uint32_t n_y)
     const bool moved = s->f_moved;
     const bool on_clamp = (f <= FE_F_LO) || (f >= FE_F_HI);
     const bool active = (s->state == (uint8_t)PD_FEST_ACQUIRE) || (s->state == (uint8_t)PD_FEST_TRACK);
-    const bool numeric = s->st_period != 0u;
+    const bool yaw = fe_nsec(p) == PD_FEST_NSEC;
+    const pd_fest_sec_t *c1 = &s->sec[0];
+    const int64_t ms_in = (c1->ms_in_q32 > 1) ? c1->ms_in_q32 : 1;
     uint64_t att2;
     fx_status_t st_att = 0u;  /* a ratio beyond 2^24 is clamped below, not an error */
     uint32_t fault;
+    bool numeric;
     bool conf_ok;
+    bool tone_ok = true;
     s->f_moved = false;
     s->n_stable = (((dfa * 100u) < (fp * FE_STAB_PERCENT)) && moved) ? fe_inc(s->n_stable) : 0u;
     s->n_clamp = (active && s->gate && on_clamp && moved) ? fe_inc(s->n_clamp) : 0u;
-    /* att = sqrt(ms_out / ms_in) in q16, the ratio capped at 2^24 */
-    att2 = (uint64_t)fe_clamp64(fx_div64_shl(s->ms_out_q32, 16u, (uint64_t)((s->ms_in_q32 > 1) ? s->ms_in_q32 : 1),
-                                             &st_att), 0, FE_2P40);
+    s->n_excite = s->gate ? fe_inc(s->n_excite) : 0u;   /* compared with 50 only: saturates at FE_N_MAX */
+    /* att = sqrt(ms_out / ms_in) in q16 (the cascade's output over section 1's input), capped at 2^24 */
+    att2 = (uint64_t)fe_clamp64(fx_div64_shl(s->sec[fe_nsec(p) - 1u].ms_out_q32, 16u, (uint64_t)ms_in, &st_att),
+                                0, FE_2P40);
     s->att_q16 = fx_isqrt64(att2 << 16);
-    s->n_att_bad = (active && s->gate && (s->kap_q30 >= FE_KAPPA_CONF) && (s->att_q16 >= FE_ONE_Q16))
+    s->n_att_bad = (active && s->gate && (c1->kap_q30 >= FE_KAPPA_CONF) && (s->att_q16 >= FE_ONE_Q16))
                        ? fe_inc(s->n_att_bad) : 0u;
-    conf_ok = s->gate && (s->kap_q30 >= FE_KAPPA_CONF) && (s->p_q30 <= FE_P_CONF) &&
+    if (yaw) {
+        tone_ok = fe_yaw_period(s, n_y, &s->st_period);
+    }
+    numeric = s->st_period != 0u;
+    conf_ok = s->gate && (c1->kap_q30 >= FE_KAPPA_CONF) && (c1->p_q30 <= FE_P_CONF) &&
               (s->att_q16 <= FE_ATT_CONF_Q16) && (s->n_stable >= FE_N_STAB) &&
-              (((uint64_t)s->n_stable * n_y * s->f_rep_q32) >= ((uint64_t)FE_CYC_Q32_TY << 32)) && !on_clamp;
+              (((uint64_t)s->n_stable * n_y * s->f_rep_q32) >= ((uint64_t)FE_CYC_Q32_TY << 32)) && !on_clamp &&
+              tone_ok;
     fault = fe_faults(s, n_y, (dfa * FE_JUMP_FIFTHS) > fp, numeric);
     s->st_sticky |= s->st_period;
     s->st_period = 0u;
-    if (s->state == (uint8_t)PD_FEST_FAULT) {
-        /* one period in FAULT (k2_cold applied by the law), then ACQUIRE at f0; the predictor is kept
-           unless a numeric fault, or a second RESID FAULT since the last TRACK, says its rates are wrong
-           (RESID zeroes the residual, so the injection could never correct them) */
-        const bool keep = (!numeric) && (s->resid_run < 2u);
-        s->resid_run = keep ? s->resid_run : 0u;
-        fe_reset(s, keep);
-    } else if (fault != 0u) {
-        s->state = (uint8_t)PD_FEST_FAULT;
-        s->fault = fault;
-        fx_cnt_inc(&s->resets);
-        s->resid_run = ((fault & PD_FEST_F_RESID) != 0u) ? fe_inc(s->resid_run) : 0u;
-    } else {
-        fe_transition(s, conf_ok, s->att_q16 > FE_ATT_LOSE_Q16, !on_clamp);
-    }
-    s->f_prev_q32 = s->f_raw_q32;
-    s->confident = s->state == (uint8_t)PD_FEST_TRACK;
-    s->hold_valid = (s->state == (uint8_t)PD_FEST_HOLD) && s->held_conf;
-    {
-        const uint64_t fr = (uint64_t)s->f_raw_q32;
-        const uint64_t fpub = (uint64_t)s->f_hat_q32;
-        const uint64_t d = (fr > fpub) ? (fr - fpub) : (fpub - fr);
-        if (((d * 1000u) >= (fpub * FE_PUB_HYST_PERMILLE)) || !s->confident) {
-            s->f_hat_q32 = s->f_raw_q32;
-        }
-    }
-    s->p_a_q30 = s->p_q30;
-    s->kappa_q30 = s->kap_q30;
+    fe_decide(s, fault, numeric, conf_ok, (!on_clamp) && tone_ok, yaw);
+    fe_publish(s);
 }
 
 void pd_fest_step(pd_fest_t *s, const pd_fest_params_t *p, uint32_t n_y, bool y_valid, int32_t y_q30,
@@ -780,7 +1011,7 @@ void pd_fest_step(pd_fest_t *s, const pd_fest_params_t *p, uint32_t n_y, bool y_
     s->k_in_period++;
     if (s->k_in_period >= n_y) {
         s->k_in_period = 0u;
-        fe_period(s, n_y);
+        fe_period(s, p, n_y);
         s->period_end = true;
     }
 }

@@ -17,12 +17,14 @@
  * Matrices of the table: int32 mantissa m and a shift sh per coefficient row; a product is
  * round(x m / 2^sh) of the int64 x, so the tool folds both Q formats into sh.
  *
- * The port covers one notch section (pitch, roll). Yaw's second section and its line logic (the
- * two-tone ratio window and the single-line decay proof) are not ported: pd_fest_check refuses
- * n_sec = 2, so a yaw table cannot select ADAPTIVE (the double design misses R3 on yaw anyway,
- * fsw/pd/README.md). The estimator requires Ty = 0.25 s (Td = 1 s: f in uq32 is the BAM of the
- * notch angle per Td) and the compile-time tuning constants of pd_fest.c, which are the reference's
- * FestParams defaults (tests/pd/test_pd_fest_golden_host checks the port against the reference).
+ * One notch section for pitch and roll; two in cascade for yaw (n_sec = 2), with the reference's
+ * line logic: section 2 searching below section 1 and co-moving with it while it anneals, the
+ * second and third passes of section 1's notch ahead of section 2, the pair window 1.5 <= hi / lo
+ * <= 2 tested without a division, and the single-line proofs (low line, continuation of a verified
+ * pair, decay over PD_FEST_ENV periods). The estimator requires Ty = 0.25 s (Td = 1 s: f in uq32 is
+ * the BAM of the notch angle per Td) and the compile-time tuning constants of pd_fest.c, which are
+ * the reference's FestParams defaults; yaw's mode-2 / mode-1 ratio (1.74) is one of them
+ * (tests/pd/test_pd_fest_golden_host checks the port against the reference, G3, on all channels).
  */
 #ifndef FSW_PD_FEST_H
 #define FSW_PD_FEST_H
@@ -33,6 +35,8 @@
 
 #define PD_FEST_NX      4u      /* rigid predictor states: x, beta, x', beta' */
 #define PD_FEST_NR      2u      /* rigid-response regressors: relative Ix, relative H */
+#define PD_FEST_NSEC    2u      /* notch sections: 1 (pitch, roll), 2 (yaw) */
+#define PD_FEST_ENV     16u     /* yaw: residual envelope history (periods) for the decay proof */
 #define PD_FEST_DECIM   4u      /* samples per Td */
 #define PD_FEST_CF      13u     /* c grid: f = 0.005 .. 0.125 Hz, step 0.01 */
 #define PD_FEST_CK      11u     /* c grid: k2 = 0 .. 1000 s, step 100 */
@@ -54,7 +58,7 @@
 /* One channel's estimator constants (the pd table's fest block; tools/pd makes them from the
    channel's nominal model with sim/pd make_fest_params, quantised by sim/pd/pd_fest_quant). */
 typedef struct {
-    uint8_t  n_sec;             /* notch sections: 1 (2, yaw, is refused: not ported) */
+    uint8_t  n_sec;             /* notch sections: 1, or 2 (yaw) */
     uint8_t  n_reg;             /* rigid-response regressors, 0 or 2 */
     uint32_t inv_m_q30;         /* 1 / m_ch: the channel's lowest mode over f_min */
     uint32_t alpha_hp_q30;      /* high-pass corner over the line frequency */
@@ -77,6 +81,19 @@ typedef struct {
     uint32_t cinv_q30[PD_FEST_CF][PD_FEST_CK];  /* 1 / c(f, k2) of the lowest mode, closed loop */
 } pd_fest_params_t;
 
+/* one notch section's state (per Td) */
+typedef struct {
+    int64_t  s1_q24;
+    int64_t  s2_q24;
+    int64_t  ms_s_q32;
+    int64_t  ms_in_q32;
+    int64_t  ms_out_q32;
+    int32_t  a_q29;
+    uint32_t p_q30;
+    uint32_t kap_q30;
+    uint32_t f_obs_q32;         /* its line [Hz] at the last Td */
+} pd_fest_sec_t;
+
 typedef struct {
     /* outputs of the last period end (what the law and the telemetry read) */
     uint32_t f_hat_q32;         /* published estimate [Hz] */
@@ -84,7 +101,7 @@ typedef struct {
     uint32_t att_q16;           /* notch rms(out) / rms(in) */
     uint32_t r_e_q16;           /* running RMS of the decimated residual / sigma_y */
     uint32_t sig_hat_q16;       /* noise estimate / sigma_y */
-    uint32_t f_obs_q32;         /* observed line (notch) frequency [Hz] */
+    uint32_t f_obs_q32;         /* observed line of section 1 [Hz] */
     uint32_t kappa_q30;
     uint32_t fault;             /* PD_FEST_F_* of the last FAULT */
     uint32_t resets;            /* FAULTs since init (saturating) */
@@ -115,14 +132,17 @@ typedef struct {
     int64_t  ms_e_q32;
     int64_t  ms_n_q32;
     uint32_t sig_ref_q16;
-    int32_t  a_q29;
-    uint32_t p_q30;
-    uint32_t kap_q30;
-    int64_t  s1_q24;
-    int64_t  s2_q24;
-    int64_t  ms_s_q32;
-    int64_t  ms_in_q32;
-    int64_t  ms_out_q32;
+    pd_fest_sec_t sec[PD_FEST_NSEC];
+    int64_t  d1_q24;            /* yaw: second pass of section 1's notch */
+    int64_t  d2_q24;
+    int64_t  q1_q24;            /* yaw: third pass (kappa 0.97) */
+    int64_t  q2_q24;
+    /* yaw line logic (per period) */
+    uint32_t f_lo_ver_q32;      /* the lower line of the last verified pair (0: none) */
+    uint32_t env_q16[PD_FEST_ENV];  /* r_e / sigma_y at the last PD_FEST_ENV period ends */
+    uint32_t env_i;
+    uint32_t n_single;          /* periods in single-line mode (saturating) */
+    uint32_t n_excite;          /* periods since the gate opened (saturating) */
     /* frequency and period logic */
     uint32_t f_raw_q32;         /* f_hat before publication (the reference's f_hat_) */
     uint32_t f_prev_q32;
@@ -145,6 +165,8 @@ typedef struct {
     bool     e_fault;
     bool     held_conf;
     bool     gate_rose;
+    bool     two;               /* yaw: two lines seen (last Td) */
+    bool     slow_ok;           /* yaw: the single line passed the decay proof (last period) */
 } pd_fest_t;
 
 /* FSW_OK-style check of the constants the loader's limits cannot see: 0 when usable, else a

@@ -8,7 +8,7 @@
  * validated table becomes active at the next step boundary and, in the mode, restarts the channels
  * (their period, derivative and telecommanded overrides follow the new table).
  * Telecommands: RESET_COUNTERS, SET_SOURCE (0 FIXED, 1 GROUND, 2 ADAPTIVE: taken by the channels with
- * a usable estimator block, pitch and roll; yaw keeps its source), SET_F (1e-6 Hz; selects GROUND),
+ * a usable estimator block, all three with the committed tables), SET_F (1e-6 Hz; selects GROUND),
  * SET_K2 (three words, 2^-8 s; selects FIXED): one command sets a whole gain source.
  */
 #include "pd_mission.h"

@@ -30,7 +30,7 @@
  *       0  u32 k0_q22, k1_q22, k2_nom_q22, k2_cold_q22, k2_min_q22, k2_max_q22   [0, 1023 2^22]
  *      24  u32 k2_node_q22[19]   (range, order and cap: pd_params_check)
  *     100  the estimator block (pd_fest_params_t, 904 B; pd_fest_check judges what the limits cannot):
- *     100  u8  n_sec           [1, 2]   (2, yaw's, is refused by pd_fest_check: not ported)
+ *     100  u8  n_sec           [1, 2]   (2: yaw's cascade)
  *     101  u8  n_reg           [0, 2]   (0 or 2: pd_fest_check)
  *     102  u8  reserved0, reserved1: 0 (else the decoder fails: FSW_ERR_DECODE)
  *     104  u32 inv_m_q30, alpha_hp_q30, f_hp_min_q32, beta_kappa_q30, kappa_hi_q30, sigma_y_q40

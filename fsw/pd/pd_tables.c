@@ -55,7 +55,7 @@ const pd_table_t PD_TBL_DEFAULT = {
                 230686720u,   /* f 0.095 Hz: k2 55 s, t* 50.5 s, t*min 50.5 s, zeta 0.16653, rho 0.998852 */
                 209715200u,   /* f 0.100 Hz: k2 50 s, t* 33.5 s, t*min 33.5 s, zeta 0.14785, rho 0.998866 */
             },
-            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant); n_sec 2: pd_fest_check refuses it, so yaw cannot fly ADAPTIVE */
+            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant) */
             .fest = {
                 .n_sec = 2u,
                 .n_reg = 2u,
@@ -366,7 +366,7 @@ const pd_table_t PD_TBL_LITERAL = {
                 230686720u,   /* f 0.095 Hz: k2 55 s, t* 50.5 s, t*min 50.5 s, zeta 0.16653, rho 0.998852 */
                 209715200u,   /* f 0.100 Hz: k2 50 s, t* 33.5 s, t*min 33.5 s, zeta 0.14785, rho 0.998866 */
             },
-            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant); n_sec 2: pd_fest_check refuses it, so yaw cannot fly ADAPTIVE */
+            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant) */
             .fest = {
                 .n_sec = 2u,
                 .n_reg = 2u,
@@ -677,7 +677,7 @@ const pd_table_t PD_TBL_AVGP = {
                 230686720u,   /* f 0.095 Hz: k2 55 s, t* 50.5 s, t*min 50.5 s, zeta 0.16653, rho 0.998852 */
                 209715200u,   /* f 0.100 Hz: k2 50 s, t* 33.5 s, t*min 33.5 s, zeta 0.14785, rho 0.998866 */
             },
-            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant); n_sec 2: pd_fest_check refuses it, so yaw cannot fly ADAPTIVE */
+            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant) */
             .fest = {
                 .n_sec = 2u,
                 .n_reg = 2u,
@@ -988,7 +988,7 @@ const pd_table_t PD_TBL_ADAPTIVE = {
                 230686720u,   /* f 0.095 Hz: k2 55 s, t* 50.5 s, t*min 50.5 s, zeta 0.16653, rho 0.998852 */
                 209715200u,   /* f 0.100 Hz: k2 50 s, t* 33.5 s, t*min 33.5 s, zeta 0.14785, rho 0.998866 */
             },
-            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant); n_sec 2: pd_fest_check refuses it, so yaw cannot fly ADAPTIVE */
+            /* estimator block: tools/pd/fest/yaw.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on the nominal model quantised by sim/pd/pd_fest_quant) */
             .fest = {
                 .n_sec = 2u,
                 .n_reg = 2u,

@@ -203,17 +203,19 @@ UT_TEST(params_check_n_y_power_of_two_and_n_bad_max)
     UT_UEQ(why_of(&g_p), PD_WHY_NY);
 }
 
-/* ADAPTIVE needs the channel's estimator block (pitch, roll; yaw's two sections are not ported) and
-   Ty = 0.25 s; a schedule made for another law may fly only FIXED. */
+/* ADAPTIVE needs a usable estimator block (one section, or yaw's two) and Ty = 0.25 s; a schedule
+   made for another law may fly only FIXED. */
 UT_TEST(params_check_mode_source_and_schedule_law)
 {
     params(CH_PITCH, &g_p);
     g_p.c.src = (uint8_t)PD_SRC_ADAPTIVE;
     UT_UEQ(why_of(&g_p), 0u);
-    g_p.g.fest.n_sec = 2u;
+    g_p.g.fest.n_sec = 3u;
     UT_UEQ(why_of(&g_p), PD_WHY_MODE);
     params(CH_YAW, &g_p);
     g_p.c.src = (uint8_t)PD_SRC_ADAPTIVE;
+    UT_UEQ(why_of(&g_p), 0u);
+    g_p.g.fest.n_sec = 0u;
     UT_UEQ(why_of(&g_p), PD_WHY_MODE);
     params(CH_PITCH, &g_p);
     g_p.c.src = (uint8_t)PD_SRC_GROUND;
@@ -582,7 +584,7 @@ UT_TEST(gain_source_changes_take_effect_at_the_next_step)
     UT_UEQ(o.health, PD_SRC_GROUND << PD_H_SRC_SH);
     {
         pd_params_t q = g_p;
-        q.g.fest.n_sec = 2u;   /* no usable estimator block */
+        q.g.fest.n_sec = 3u;   /* no usable estimator block */
         UT_TRUE(!pd_set_source(&g_s, &q, (uint8_t)PD_SRC_ADAPTIVE));   /* refused, nothing changes */
     }
     o = step(&g_s, &g_p, 1100, true);

@@ -171,14 +171,16 @@ SIM_TEST(kick_fault_cold_gain)
     EXPECT_TRUE(fx.t_star >= 0.0);
 }
 
-// Who may fly ADAPTIVE: yaw's block (two sections) is refused, a Ty other than 0.25 s is refused, and
-// SET_SOURCE ADAPTIVE leaves such a channel on its source.
+// Who may fly ADAPTIVE: a block with a section count other than 1 or 2 is refused (yaw's two pass), a
+// Ty other than 0.25 s is refused, and SET_SOURCE ADAPTIVE leaves such a channel on its source.
 SIM_TEST(adaptive_refusals)
 {
     pd_params_t p = adaptive_pitch();
     uint32_t why = 0u;
     EXPECT_EQ_INT(pd_params_check(&p, &why), FSW_OK);
     p.g.fest = quantise_fest(make_fest_params(Channel::yaw()));
+    EXPECT_EQ_INT(pd_params_check(&p, &why), FSW_OK);
+    p.g.fest.n_sec = 3u;
     EXPECT_EQ_INT(pd_params_check(&p, &why), FSW_ERR_RANGE);
     EXPECT_EQ_INT(why, PD_WHY_MODE);
     p = adaptive_pitch();
@@ -192,6 +194,7 @@ SIM_TEST(adaptive_refusals)
     pd_params_t y{};
     pd_params_of(&PD_TBL_DEFAULT, 0u, &y);
     y.g.fest = quantise_fest(make_fest_params(Channel::yaw()));
+    y.g.fest.n_sec = 3u;
     pd_state_t s;
     pd_init(&s, &y);
     EXPECT_TRUE(!pd_set_source(&s, &y, static_cast<uint8_t>(PD_SRC_ADAPTIVE)));

@@ -102,20 +102,23 @@ UT_TEST(same_inputs_same_outputs)
     UT_UEQ(g_a.state, g_b.state);
     UT_UEQ(g_a.resets, g_b.resets);
     UT_UEQ(g_a.fault, g_b.fault);
-    UT_UEQ(g_a.p_q30, g_b.p_q30);
-    UT_EQ(g_a.a_q29, g_b.a_q29);
+    UT_UEQ(g_a.sec[0].p_q30, g_b.sec[0].p_q30);
+    UT_EQ(g_a.sec[0].a_q29, g_b.sec[0].a_q29);
     UT_TRUE(g_a.ms_e_q32 == g_b.ms_e_q32);
     for (i = 0u; i < PD_FEST_NX; i++) {
         UT_TRUE(g_a.xh[i] == g_b.xh[i]);
     }
 }
 
-/* The check refuses what the port cannot run (yaw's two sections) and a corrupt block. */
+/* The check passes the three default blocks (yaw's with two sections) and refuses a corrupt one. */
 UT_TEST(check_codes)
 {
     static pd_fest_params_t q;
-    UT_UEQ(pd_fest_check(&PD_TBL_DEFAULT.ch[0].fest), 1u);    /* yaw: n_sec 2 */
+    UT_UEQ(pd_fest_check(&PD_TBL_DEFAULT.ch[0].fest), 0u);    /* yaw: n_sec 2 */
     UT_UEQ(pd_fest_check(&PD_TBL_DEFAULT.ch[1].fest), 0u);
+    q = PD_TBL_DEFAULT.ch[0].fest;
+    q.n_sec = 3u;
+    UT_UEQ(pd_fest_check(&q), 1u);
     q = PD_TBL_DEFAULT.ch[2].fest;
     q.inv_m_q30 = 0u;
     UT_UEQ(pd_fest_check(&q), 3u);

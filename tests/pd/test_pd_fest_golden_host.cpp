@@ -37,7 +37,8 @@ const K2Schedule &schedule(const std::string &ch)
 {
     static const K2Schedule p = load_k2_schedule(std::string(PD_SCHEDULE_DIR) + "/pitch_fast.json");
     static const K2Schedule r = load_k2_schedule(std::string(PD_SCHEDULE_DIR) + "/roll_fast.json");
-    return ch == "roll" ? r : p;
+    static const K2Schedule y = load_k2_schedule(std::string(PD_SCHEDULE_DIR) + "/yaw_fast.json");
+    return ch == "roll" ? r : (ch == "yaw" ? y : p);
 }
 
 struct Cmp {
@@ -154,7 +155,11 @@ SIM_TEST(check_refuses)
 {
     pd_fest_params_t q = quantise_fest(make_fest_params(Channel::pitch()));
     EXPECT_EQ_INT(pd_fest_check(&q), 0);
-    q.n_sec = 2u;
+    q.n_sec = 2u;  // yaw's cascade: usable
+    EXPECT_EQ_INT(pd_fest_check(&q), 0);
+    q.n_sec = 3u;
+    EXPECT_EQ_INT(pd_fest_check(&q), 1);
+    q.n_sec = 0u;
     EXPECT_EQ_INT(pd_fest_check(&q), 1);
     q = quantise_fest(make_fest_params(Channel::pitch()));
     q.cinv_q30[3][4] = 0u;
@@ -202,12 +207,39 @@ SIM_TEST(g3_fault_gaps)
     EXPECT_TRUE(g.state_agree >= (95 * g.periods) / 100);
     EXPECT_TRUE(g.max_rel <= 0.006);
     EXPECT_EQ_INT(static_cast<int>(k.st | g.st), 0);
+    // yaw: the reset clears the cascade and the line logic (pair memory, envelope ring) too
+    const Cmp ky = compare(Channel::yaw(), 0.03, 1u, 600.0);
+    EXPECT_TRUE(ky.ref_resets >= 1u);  // the kick's RESID (the reference re-faults after it: 4 here)
+    EXPECT_TRUE(ky.fx_resets == ky.ref_resets);
+    EXPECT_TRUE(ky.state_agree >= (95 * ky.periods) / 100);
+    EXPECT_TRUE(ky.max_rel <= 0.006);
+    const Cmp gy = compare(Channel::yaw(), 0.05, 2u, -1.0, 20);
+    EXPECT_TRUE(gy.both_conf > 0);
+    EXPECT_TRUE(gy.state_agree >= (95 * gy.periods) / 100);
+    EXPECT_TRUE(gy.max_rel <= 0.006);
+    EXPECT_EQ_INT(static_cast<int>(ky.st | gy.st), 0);
+}
+
+// G3 on yaw (two sections and the line logic) across its range: the lowest grid node, where the
+// pair decides, the pair-to-single hand-over region and the single-line proofs above it.
+SIM_TEST(g3_yaw)
+{
+    const double fs[] = {0.01, 0.02, 0.03, 0.05, 0.10};
+    for (double f : fs) {
+        const Cmp c = compare(Channel::yaw(), f, 0u);
+        EXPECT_TRUE(c.periods == 300);
+        EXPECT_TRUE(c.state_agree >= (95 * c.periods) / 100);
+        EXPECT_TRUE(c.max_rel <= 0.006);
+        EXPECT_TRUE(std::fabs(c.f1200_fx / c.f1200_ref - 1.0) <= 0.001);
+        EXPECT_TRUE(c.fx_resets == c.ref_resets);
+        EXPECT_EQ_INT(static_cast<int>(c.st), 0);
+    }
 }
 
 int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(cinv_lookup), cmocka_unit_test(check_refuses),
-                                       cmocka_unit_test(g3_pitch_roll),
+                                       cmocka_unit_test(g3_pitch_roll), cmocka_unit_test(g3_yaw),
                                        cmocka_unit_test(g3_fault_gaps)};
     return cmocka_run_group_tests_name("pd_fest_golden_host", tests, nullptr, nullptr);
 }

@@ -160,60 +160,75 @@ SIM_TEST(ref_adaptive_pitch_matches_the_flight_under_frame_loss)
     compare(s, ", 5 % frame loss");
 }
 
-// Yaw: the flight refuses ADAPTIVE where its estimator block fails pd_fest_check (n_sec = 2): a table
-// with yaw flying and source ADAPTIVE is vetoed (PD_WHY_MODE), SET_SOURCE 2 leaves yaw's source as it
-// was. The reference: the channel's constructor throws for that boot source, set_source refuses it,
-// and in SIL SET_SOURCE 2 leaves yaw FIXED while pitch and roll go ADAPTIVE, as the flight.
-SIM_TEST(ref_yaw_adaptive_refused_where_the_flight_refuses_it)
+// Who may fly ADAPTIVE, flight and reference alike: every channel of the committed tables (yaw's block
+// has two sections), and no channel whose block fails pd_fest_check (here yaw's with n_sec = 3): a
+// table with such a channel flying ADAPTIVE is vetoed (PD_WHY_MODE), the reference's channel refuses
+// that boot source, and SET_SOURCE 2 is refused by both. In SIL SET_SOURCE 2 takes all three channels
+// ADAPTIVE on both backends.
+SIM_TEST(ref_adaptive_accepted_and_refused_where_the_flight_is)
 {
     pd_table_t tbl = sim::pd_boot_table("pd_adaptive");
-    for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
-        pd_params_t p{};
-        pd_params_of(&tbl, k, &p);
-        std::uint32_t why = 0u;
-        const bool fl_ok = pd_params_check(&p, &why) == FSW_OK;
-        const ref::PdChannelTable t = ref::dequantise(p);
-        bool ref_ok = true;
-        try {
-            ref::PdRefChannel c(t, design(k));
-        } catch (const std::invalid_argument &) {
-            ref_ok = false;
+    for (int bad = 0; bad < 2; ++bad) {
+        for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
+            pd_params_t p{};
+            pd_params_of(&tbl, k, &p);
+            if (bad != 0) {
+                p.g.fest.n_sec = 3u;
+            }
+            std::uint32_t why = 0u;
+            const bool fl_ok = pd_params_check(&p, &why) == FSW_OK;
+            const ref::PdChannelTable t = ref::dequantise(p);
+            bool ref_ok = true;
+            try {
+                ref::PdRefChannel c(t, design(k));
+            } catch (const std::invalid_argument &) {
+                ref_ok = false;
+            }
+            std::printf("boot ADAPTIVE %-5s%s: flight %s (why 0x%02x, pd_fest_check %u), reference %s\n", kCh[k],
+                        bad != 0 ? " n_sec 3" : "", fl_ok ? "accepts" : "refuses", why, pd_fest_check(&p.g.fest),
+                        ref_ok ? "accepts" : "refuses");
+            EXPECT_TRUE(fl_ok == ref_ok);
+            EXPECT_TRUE(fl_ok == (bad == 0));
+            EXPECT_TRUE(t.fest_ok == (bad == 0));
         }
-        std::printf("boot ADAPTIVE %-5s: flight %s (why 0x%02x, pd_fest_check %u), reference %s\n", kCh[k],
-                    fl_ok ? "accepts" : "refuses", why, pd_fest_check(&p.g.fest), ref_ok ? "accepts" : "refuses");
-        EXPECT_TRUE(fl_ok == ref_ok);
-        EXPECT_TRUE(fl_ok == (k != 0u));
-        EXPECT_TRUE(t.fest_ok == (k != 0u));
     }
-    // the whole table with yaw flying: vetoed for PD_WHY_MODE (with ch_mask 6 it passes)
+    // the whole table with yaw flying: passes; with yaw's block corrupt, vetoed for PD_WHY_MODE
     std::uint32_t why = 0u;
     pd_params_t chk{};
-    EXPECT_EQ_INT(pd_table_check(&tbl, &chk, &why), 0);
     tbl.c.ch_mask = 7u;
+    EXPECT_EQ_INT(pd_table_check(&tbl, &chk, &why), 0);
+    tbl.ch[0].fest.n_sec = 3u;
     EXPECT_TRUE((pd_table_check(&tbl, &chk, &why) & PD_WHY_MODE) != 0u);
 
-    // SET_SOURCE ADAPTIVE on a FIXED boot (pd_default): pd_set_source vs PdRefChannel::set_source
+    // SET_SOURCE ADAPTIVE on a FIXED boot (pd_default): pd_set_source vs PdRefChannel::set_source,
+    // the committed blocks and yaw's corrupt one
     const pd_table_t def = sim::pd_boot_table("pd_default");
-    for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
-        pd_params_t p{};
-        pd_params_of(&def, k, &p);
-        pd_state_t st{};
-        pd_init(&st, &p);
-        const bool fl = pd_set_source(&st, &p, static_cast<std::uint8_t>(PD_SRC_ADAPTIVE));
-        ref::PdRefChannel c(ref::dequantise(p), design(k));
-        const bool rf = c.set_source(PD_SRC_ADAPTIVE);
-        std::printf("SET_SOURCE ADAPTIVE %-5s: flight %s (source %u), reference %s (source %d)\n", kCh[k],
-                    fl ? "takes it" : "refuses", st.src, rf ? "takes it" : "refuses", c.source());
-        EXPECT_TRUE(fl == rf);
-        EXPECT_TRUE(fl == (k != 0u));
-        EXPECT_EQ_INT(c.source(), st.src);
-        // the cold start: k2_cold from the next sample in both (one missing sample stepped)
-        pd_in_t in{};
-        pd_out_t out{};
-        pd_step(&st, &p, &in, &out);
-        (void)c.step(ref::PdRefIn{});
-        EXPECT_NEAR(std::ldexp(static_cast<double>(st.k2_q22), -22), c.k2(), 0.0);
-        if (fl) { EXPECT_EQ_INT(st.k2_q22, p.g.k2_cold_q22); }
+    for (int bad = 0; bad < 2; ++bad) {
+        for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
+            pd_params_t p{};
+            pd_params_of(&def, k, &p);
+            if (bad != 0) {
+                p.g.fest.n_sec = 3u;
+            }
+            pd_state_t st{};
+            pd_init(&st, &p);
+            const bool fl = pd_set_source(&st, &p, static_cast<std::uint8_t>(PD_SRC_ADAPTIVE));
+            ref::PdRefChannel c(ref::dequantise(p), design(k));
+            const bool rf = c.set_source(PD_SRC_ADAPTIVE);
+            std::printf("SET_SOURCE ADAPTIVE %-5s%s: flight %s (source %u), reference %s (source %d)\n", kCh[k],
+                        bad != 0 ? " n_sec 3" : "", fl ? "takes it" : "refuses", st.src, rf ? "takes it" : "refuses",
+                        c.source());
+            EXPECT_TRUE(fl == rf);
+            EXPECT_TRUE(fl == (bad == 0));
+            EXPECT_EQ_INT(c.source(), st.src);
+            // the cold start: k2_cold from the next sample in both (one missing sample stepped)
+            pd_in_t in{};
+            pd_out_t out{};
+            pd_step(&st, &p, &in, &out);
+            (void)c.step(ref::PdRefIn{});
+            EXPECT_NEAR(std::ldexp(static_cast<double>(st.k2_q22), -22), c.k2(), 0.0);
+            if (fl) { EXPECT_EQ_INT(st.k2_q22, p.g.k2_cold_q22); }
+        }
     }
 
     // in SIL: pd_nominal (FIXED boot, all channels fly), SET_SOURCE 2 at t = 0, 60 s
@@ -227,11 +242,11 @@ SIM_TEST(ref_yaw_adaptive_refused_where_the_flight_refuses_it)
         const std::uint32_t sb = (mm(rf).health_or[k] & PD_H_SRC) >> PD_H_SRC_SH;
         std::printf("SIL SET_SOURCE ADAPTIVE %-5s: source OR fixed %u ref %u, k2 final %.4f / %.4f s\n", kCh[k], sa, sb,
                     mm(fx).k2_final[k], mm(rf).k2_final[k]);
-        // the health word's source field ORed over the run: FIXED (0) throughout for yaw, and ADAPTIVE
-        // (2) for pitch and roll (the command arrives before the first sample)
-        EXPECT_EQ_INT(sa, k == 0 ? PD_SRC_FIXED : PD_SRC_ADAPTIVE);
+        // the health word's source field ORed over the run: ADAPTIVE (2) on every channel (the command
+        // arrives before the first sample)
+        EXPECT_EQ_INT(sa, PD_SRC_ADAPTIVE);
         EXPECT_EQ_INT(sb, sa);
-        EXPECT_NEAR(mm(rf).k2_final[k], mm(fx).k2_final[k], 0.0);   // yaw k2_nom, the others k2_cold at 60 s
+        EXPECT_NEAR(mm(rf).k2_final[k], mm(fx).k2_final[k], 0.0);   // k2_cold at 60 s
     }
 }
 
@@ -239,6 +254,6 @@ int main()
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(ref_adaptive_pitch_matches_the_flight),
                                        cmocka_unit_test(ref_adaptive_pitch_matches_the_flight_under_frame_loss),
-                                       cmocka_unit_test(ref_yaw_adaptive_refused_where_the_flight_refuses_it)};
+                                       cmocka_unit_test(ref_adaptive_accepted_and_refused_where_the_flight_is)};
     return cmocka_run_group_tests_name("pd_ref_adaptive", tests, nullptr, nullptr);
 }

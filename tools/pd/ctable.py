@@ -32,8 +32,6 @@ def _fest(ch, b, ind):
     """`.fest = {...}` of one channel: designated initialisers, one matrix row a line."""
     src = ("tools/pd/fest/%s.json (`python -m tools.pd fest`: pd_analysis fest-params, the double design on "
            "the nominal model quantised by sim/pd/pd_fest_quant)" % ch)
-    if b["n_sec"] != 1:
-        src += "; n_sec %d: pd_fest_check refuses it, so %s cannot fly ADAPTIVE" % (b["n_sec"], ch)
     i1, i2, i3 = ind + "    ", ind + "        ", ind + "            "
     row = lambda f, r: "{" + ", ".join(_fv(f, v) for v in r) + "}"  # noqa: E731
     out = [ind + "/* estimator block: %s */" % src, ind + ".fest = {"]

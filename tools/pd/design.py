@@ -59,8 +59,8 @@ CHANNELS_DESIGN = {
 TABLES = [("pd_default", "PD_TBL_DEFAULT", {}),
           ("pd_literal", "PD_TBL_LITERAL", {"law": "literal"}),
           ("pd_avgp", "PD_TBL_AVGP", {"law": "fast_avgp"}),
-          # ADAPTIVE from boot on roll and pitch; yaw's estimator (two sections) is not ported, so yaw
-          # does not fly in this table (ch_mask 6; pd_table_check exempts masked channels)
+          # ADAPTIVE from boot on roll and pitch (ch_mask 6: the run command's scenario is pitch's cold
+          # start; the A3-6 yaw campaign flies yaw too by dispersing ch_mask to 7)
           ("pd_adaptive", "PD_TBL_ADAPTIVE", {"src": "adaptive", "ch_mask": 6})]
 
 

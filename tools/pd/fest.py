@@ -4,8 +4,8 @@ make_fest_params on the channel's nominal model (sim/pd/pd_fest_ref), quantised 
 the golden tests use too (sim/pd/pd_fest_quant). The file is that output with the matrices given their
 C shape (one row a line), so the block reads as fsw/pd/pd_fest.h declares it; design.py reads it.
 
-Yaw's block has n_sec = 2: it is carried and quantised like the others, and pd_fest_check refuses it
-(yaw cannot fly ADAPTIVE).
+Yaw's block has n_sec = 2 (the two-section cascade of fsw/pd/pd_fest.c); its line-logic constants are
+compile-time in the port, like the tuning constants common to all channels.
 
     python -m tools.pd fest --analysis build/host/tools/pd/pd_analysis [--check]
 """

@@ -374,8 +374,7 @@ int cmd_fest(const FestCase &c)
 
 // The estimator block of the channel's table (fsw/pd/pd_fest.h) as tools/pd commits it
 // (tools/pd/fest/<channel>.json): the double design on the nominal model, through the one quantiser
-// the golden tests use too. Yaw's block (n_sec 2) is printed like the others: the table carries it,
-// pd_fest_check refuses it.
+// the golden tests use too (yaw's with n_sec 2).
 int cmd_fest_params(const std::string &chan)
 {
     const pd_fest_params_t q = quantise_fest(make_fest_params(Channel::by_name(chan)));

@@ -59,7 +59,7 @@ bool RefPdBackend::reset()
             // A channel that does not fly is never stepped, so its telemetry keeps what the flight's
             // pd_init left: the boot source's k2 (ADAPTIVE: k2_cold, GROUND: the schedule at f_ground,
             // FIXED: k2_nom), all else zero. It needs no gain source here (as pd_table_check: an
-            // ADAPTIVE table flies pitch and roll with ch_mask 6, yaw's refused estimator never runs).
+            // ADAPTIVE table flies pitch and roll with ch_mask 6).
             const double clamp_lo = ct.k2_min, clamp_hi = ct.k2_max;
             const double k2 = (ct.src == PD_SRC_ADAPTIVE) ? std::fmin(std::fmax(ct.k2_cold, clamp_lo), clamp_hi)
                               : (ct.src == PD_SRC_GROUND) ? ref::pd_sched_k2(ct, ct.f_ground)
