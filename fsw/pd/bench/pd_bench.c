@@ -259,6 +259,9 @@ static void pdb_put_classes(void)
     board_console_write("class ad_sample ADAPTIVE (pd_adaptive, pitch) valid sample inside a Td block: law + estimator predictor, regressors, noise, anti-alias (every 3rd; sub: estimator state)\n");
     board_console_write("class ad_td ADAPTIVE 4th sample of a Td block, not a period end: + high-pass, gate, notch and RLS, theta RLS, frequency (sub: estimator state)\n");
     board_console_write("class ad_period ADAPTIVE 16th sample: + the estimator's period logic and the re-tune rule (sub: estimator state after it)\n");
+    board_console_write("class ady_sample ADAPTIVE yaw (two notch sections) valid sample inside a Td block (every 3rd; sub: estimator state)\n");
+    board_console_write("class ady_td ADAPTIVE yaw 4th sample of a Td block: + the two-section cascade and the line logic\n");
+    board_console_write("class ady_period ADAPTIVE yaw 16th sample: + the period logic with the pair / single-line proofs\n");
 }
 
 /* bracket1, twin and wrapper of kind kd: the instructions of one call (the wrapper leaves the state
@@ -433,14 +436,19 @@ static bool classify_avg(uint32_t k, const char **cls, const char **sub)
 }
 
 /* One pitch channel of tbl; err if pd_params_check refuses it. */
-static void load_params(const pd_table_t *tbl, const char *name)
+static void load_params_ch(const pd_table_t *tbl, uint32_t ch, const char *name)
 {
     uint32_t why = 0u;
-    pd_params_of(tbl, PD_B_CH, &s_par);
+    pd_params_of(tbl, ch, &s_par);
     if (pd_params_check(&s_par, &why) != FSW_OK) {
         pdb_put_err(name, 0u, why);
     }
     pd_init(&s_slive, &s_par);
+}
+
+static void load_params(const pd_table_t *tbl, const char *name)
+{
+    load_params_ch(tbl, PD_B_CH, name);
 }
 
 static void run_fast(void)
@@ -523,11 +531,14 @@ static const char *ad_state(void)
     return names[s_swork.fest.state & 3u];
 }
 
-static void run_adaptive(void)
+/* ch: pitch (one notch section) or yaw (two sections and the line logic; its source in PD_TBL_ADAPTIVE is
+   ADAPTIVE too, masked off by ch_mask in flight, which pd_params_check of the channel does not see);
+   cls[3]: the class names of a sample, a Td sample and a period end */
+static void run_adaptive(uint32_t ch, const char *const *cls3)
 {
     uint32_t n_ord = 0u;
     uint32_t k;
-    load_params(&PD_TBL_ADAPTIVE, "table_refused_adaptive");
+    load_params_ch(&PD_TBL_ADAPTIVE, ch, "table_refused_adaptive");
     if (s_slive.src != (uint8_t)PD_SRC_ADAPTIVE) {
         pdb_put_err("adaptive_not_selected", 0u, s_slive.src);
     }
@@ -537,13 +548,13 @@ static void run_adaptive(void)
         make_input(k, PD_B_EV_ORD);
         bk_pd_step(k);   /* classify: s_swork = the step from s_slive */
         if (s_swork.fest.period_end) {
-            cls = "ad_period";
+            cls = cls3[2];
             measured = true;
         } else if (s_swork.fest.blk_n == 0u) {
-            cls = "ad_td";
+            cls = cls3[1];
             measured = true;
         } else {
-            cls = "ad_sample";
+            cls = cls3[0];
             n_ord++;
             measured = (n_ord % PD_B_EVERY) == 1u;
         }
@@ -552,10 +563,12 @@ static void run_adaptive(void)
         }
         s_slive = s_swork;
     }
-    pdb_put_sum("ad_samples", PD_B_AD_N);
-    pdb_put_sum("ad_fest_resets", s_slive.fest.resets);
-    pdb_put_sum("ad_fest_state", (uint32_t)s_slive.fest.state);
-    pdb_put_sum("ad_k2_q22", s_slive.k2_q22);
+    if (ch == PD_B_CH) {
+        pdb_put_sum("ad_samples", PD_B_AD_N);
+        pdb_put_sum("ad_fest_resets", s_slive.fest.resets);
+        pdb_put_sum("ad_fest_state", (uint32_t)s_slive.fest.state);
+        pdb_put_sum("ad_k2_q22", s_slive.k2_q22);
+    }
 }
 
 /* The mission block: the boot table encoded, checked, loaded and entered. */
@@ -691,7 +704,12 @@ int main(void)
     run_fast();
     run_avg(&PD_TBL_LITERAL, "table_refused_literal");
     run_avg(&PD_TBL_AVGP, "table_refused_avgp");
-    run_adaptive();
+    {
+        static const char *const s_pitch[3] = { "ad_sample", "ad_td", "ad_period" };
+        static const char *const s_yaw[3] = { "ady_sample", "ady_td", "ady_period" };
+        run_adaptive(PD_B_CH, s_pitch);
+        run_adaptive(0u, s_yaw);
+    }
     run_mis();
     run_mis_gap();
     run_sched();
