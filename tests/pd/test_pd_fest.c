@@ -3,7 +3,8 @@
  * it also proves the arithmetic free of undefined behaviour on these inputs). Its accuracy against the
  * double design is golden_pd_fest's (G3); here only what must hold for any input:
  *   - the published f_hat stays inside the output clamps [0.008, 0.12] Hz, the state in 0..3, the RLS P of
- *     the notch in [1e-4, 1] once a period has ended, the FAULT count never decreases;
+ *     the notch in [1e-4, 1] once a period has ended, the FAULT count never decreases (pitch's block, and
+ *     yaw's with its two sections and line logic);
  *   - garbage (full-range attitudes and torques, random validity, random k2 up to 1023 s) raises FAULTs
  *     (counted, the reasons kept), never a stuck estimator: a quiet stream afterwards (y = 0, M = 0,
  *     all valid) leaves FAULT within two periods and raises no further FAULT;
@@ -56,10 +57,10 @@ static void check_invariants(const pd_fest_t *s, uint32_t *resets_prev, uint32_t
     *resets_prev = s->resets;
 }
 
-UT_TEST(garbage_then_quiet)
+/* garbage, then a quiet stream, through one channel's block */
+static void garbage_then_quiet_on(const pd_fest_params_t *p, uint32_t seed0)
 {
-    const pd_fest_params_t *p = &PD_TBL_DEFAULT.ch[2].fest;   /* pitch */
-    uint32_t seed = 0x2545F491u;
+    uint32_t seed = seed0;
     uint32_t resets = 0u;
     uint32_t k;
     uint32_t resets_after;
@@ -85,9 +86,21 @@ UT_TEST(garbage_then_quiet)
     UT_TRUE(g_a.state != (uint8_t)PD_FEST_FAULT);
 }
 
-UT_TEST(same_inputs_same_outputs)
+UT_TEST(garbage_then_quiet)
 {
-    const pd_fest_params_t *p = &PD_TBL_DEFAULT.ch[1].fest;   /* roll: no regressors */
+    garbage_then_quiet_on(&PD_TBL_DEFAULT.ch[2].fest, 0x2545F491u);   /* pitch: one section, regressors */
+}
+
+/* yaw: two sections, the passes, the pair / single-line logic and the envelope ring on garbage */
+UT_TEST(garbage_then_quiet_yaw)
+{
+    garbage_then_quiet_on(&PD_TBL_DEFAULT.ch[0].fest, 0x9E3779B9u);
+    UT_TRUE((g_a.sec[1].p_q30 >= P_MIN_Q30) && (g_a.sec[1].p_q30 <= P_MAX_Q30));
+    UT_TRUE(g_a.env_i < PD_FEST_ENV);
+}
+
+static void same_inputs_on(const pd_fest_params_t *p)
+{
     uint32_t sa = 12345u;
     uint32_t sb = 12345u;
     uint32_t k;
@@ -102,12 +115,22 @@ UT_TEST(same_inputs_same_outputs)
     UT_UEQ(g_a.state, g_b.state);
     UT_UEQ(g_a.resets, g_b.resets);
     UT_UEQ(g_a.fault, g_b.fault);
-    UT_UEQ(g_a.sec[0].p_q30, g_b.sec[0].p_q30);
-    UT_EQ(g_a.sec[0].a_q29, g_b.sec[0].a_q29);
+    for (i = 0u; i < PD_FEST_NSEC; i++) {
+        UT_UEQ(g_a.sec[i].p_q30, g_b.sec[i].p_q30);
+        UT_EQ(g_a.sec[i].a_q29, g_b.sec[i].a_q29);
+        UT_UEQ(g_a.sec[i].kap_q30, g_b.sec[i].kap_q30);
+    }
+    UT_UEQ(g_a.f_lo_ver_q32, g_b.f_lo_ver_q32);
     UT_TRUE(g_a.ms_e_q32 == g_b.ms_e_q32);
     for (i = 0u; i < PD_FEST_NX; i++) {
         UT_TRUE(g_a.xh[i] == g_b.xh[i]);
     }
+}
+
+UT_TEST(same_inputs_same_outputs)
+{
+    same_inputs_on(&PD_TBL_DEFAULT.ch[1].fest);   /* roll: no regressors */
+    same_inputs_on(&PD_TBL_DEFAULT.ch[0].fest);   /* yaw: two sections */
 }
 
 /* The check passes the three default blocks (yaw's with two sections) and refuses a corrupt one. */
@@ -132,6 +155,7 @@ UT_TEST(check_codes)
 
 int main(void)
 {
-    UT_CASES(cases) = { UT_CASE(garbage_then_quiet), UT_CASE(same_inputs_same_outputs), UT_CASE(check_codes) };
+    UT_CASES(cases) = { UT_CASE(garbage_then_quiet), UT_CASE(garbage_then_quiet_yaw),
+                          UT_CASE(same_inputs_same_outputs), UT_CASE(check_codes) };
     return UT_RUN("pd_fest", cases);
 }
