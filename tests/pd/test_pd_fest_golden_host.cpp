@@ -194,30 +194,27 @@ SIM_TEST(g3_pitch_roll)
 }
 
 // The fault and gap paths: a kick (RESID fault, one period in FAULT, re-acquisition from f0 with the
-// predictor kept) and 1 sample in 20 invalid, both against the reference.
+// predictor kept) and 1 sample in 20 invalid, both against the reference; pitch, and yaw, whose reset
+// also clears the cascade and the line logic (pair memory, envelope ring).
 SIM_TEST(g3_fault_gaps)
 {
-    const Cmp k = compare(Channel::pitch(), 0.03, 1u, 600.0);
-    EXPECT_EQ_INT(k.ref_resets, 1);
-    EXPECT_TRUE(k.fx_resets == k.ref_resets);
-    EXPECT_TRUE(k.state_agree >= (95 * k.periods) / 100);
-    EXPECT_TRUE(k.max_rel <= 0.006);
-    const Cmp g = compare(Channel::pitch(), 0.07, 2u, -1.0, 20);
-    EXPECT_TRUE(g.both_conf > 0);
-    EXPECT_TRUE(g.state_agree >= (95 * g.periods) / 100);
-    EXPECT_TRUE(g.max_rel <= 0.006);
-    EXPECT_EQ_INT(static_cast<int>(k.st | g.st), 0);
-    // yaw: the reset clears the cascade and the line logic (pair memory, envelope ring) too
-    const Cmp ky = compare(Channel::yaw(), 0.03, 1u, 600.0);
-    EXPECT_TRUE(ky.ref_resets >= 1u);  // the kick's RESID (the reference re-faults after it: 4 here)
-    EXPECT_TRUE(ky.fx_resets == ky.ref_resets);
-    EXPECT_TRUE(ky.state_agree >= (95 * ky.periods) / 100);
-    EXPECT_TRUE(ky.max_rel <= 0.006);
-    const Cmp gy = compare(Channel::yaw(), 0.05, 2u, -1.0, 20);
-    EXPECT_TRUE(gy.both_conf > 0);
-    EXPECT_TRUE(gy.state_agree >= (95 * gy.periods) / 100);
-    EXPECT_TRUE(gy.max_rel <= 0.006);
-    EXPECT_EQ_INT(static_cast<int>(ky.st | gy.st), 0);
+    struct Case {
+        Channel ch;
+        double f_kick, f_gaps;
+        unsigned kick_resets;  // the reference's FAULT count after the kick: pitch 1 (the RESID), yaw 4
+    };
+    for (const Case &c : {Case{Channel::pitch(), 0.03, 0.07, 1u}, Case{Channel::yaw(), 0.03, 0.05, 4u}}) {
+        const Cmp k = compare(c.ch, c.f_kick, 1u, 600.0);
+        EXPECT_EQ_INT(k.ref_resets, c.kick_resets);
+        EXPECT_TRUE(k.fx_resets == k.ref_resets);
+        EXPECT_TRUE(k.state_agree >= (95 * k.periods) / 100);
+        EXPECT_TRUE(k.max_rel <= 0.006);
+        const Cmp g = compare(c.ch, c.f_gaps, 2u, -1.0, 20);
+        EXPECT_TRUE(g.both_conf > 0);
+        EXPECT_TRUE(g.state_agree >= (95 * g.periods) / 100);
+        EXPECT_TRUE(g.max_rel <= 0.006);
+        EXPECT_EQ_INT(static_cast<int>(k.st | g.st), 0);
+    }
 }
 
 // G3 on yaw (two sections and the line logic) across its range: the lowest grid node, where the
