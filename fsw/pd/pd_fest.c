@@ -326,7 +326,6 @@ static void fe_reset(pd_fest_t *s, bool keep_predictor)
     for (i = 0u; i < PD_FEST_ENV; i++) {
         s->env_q16[i] = 0u;
     }
-    s->f_obs_q32 = 0u;
     s->f_raw_q32 = FE_F0;
     s->f_prev_q32 = FE_F0;
     s->f_hat_q32 = FE_F0;
@@ -679,7 +678,6 @@ static void fe_lines(pd_fest_t *s, const pd_fest_params_t *p, uint32_t k2_q22, b
     for (i = 0u; i < fe_nsec(p); i++) {
         s->sec[i].f_obs_q32 = fe_f_of_a(s->sec[i].a_q29, st);
     }
-    s->f_obs_q32 = s->sec[0].f_obs_q32;
     f_rep = s->sec[0].f_obs_q32;
     if (fe_nsec(p) == PD_FEST_NSEC) {
         const pd_fest_sec_t *c1 = &s->sec[0];

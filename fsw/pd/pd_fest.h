@@ -101,7 +101,6 @@ typedef struct {
     uint32_t att_q16;           /* notch rms(out) / rms(in) */
     uint32_t r_e_q16;           /* running RMS of the decimated residual / sigma_y */
     uint32_t sig_hat_q16;       /* noise estimate / sigma_y */
-    uint32_t f_obs_q32;         /* observed line of section 1 [Hz] */
     uint32_t kappa_q30;
     uint32_t fault;             /* PD_FEST_F_* of the last FAULT */
     uint32_t resets;            /* FAULTs since init (saturating) */

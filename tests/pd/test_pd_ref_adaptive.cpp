@@ -161,20 +161,27 @@ SIM_TEST(ref_adaptive_pitch_matches_the_flight_under_frame_loss)
 }
 
 // Who may fly ADAPTIVE, flight and reference alike: every channel of the committed tables (yaw's block
-// has two sections), and no channel whose block fails pd_fest_check (here yaw's with n_sec = 3): a
+// has two sections), and no channel whose block fails pd_fest_check (here each block with n_sec = 3): a
 // table with such a channel flying ADAPTIVE is vetoed (PD_WHY_MODE), the reference's channel refuses
 // that boot source, and SET_SOURCE 2 is refused by both. In SIL SET_SOURCE 2 takes all three channels
 // ADAPTIVE on both backends.
+// channel k's parameters from tbl; bad: its estimator block corrupted (n_sec = 3)
+static pd_params_t params_of(const pd_table_t &tbl, std::uint32_t k, bool bad)
+{
+    pd_params_t p{};
+    pd_params_of(&tbl, k, &p);
+    if (bad) {
+        p.g.fest.n_sec = 3u;
+    }
+    return p;
+}
+
 SIM_TEST(ref_adaptive_accepted_and_refused_where_the_flight_is)
 {
     pd_table_t tbl = sim::pd_boot_table("pd_adaptive");
     for (int bad = 0; bad < 2; ++bad) {
         for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
-            pd_params_t p{};
-            pd_params_of(&tbl, k, &p);
-            if (bad != 0) {
-                p.g.fest.n_sec = 3u;
-            }
+            pd_params_t p = params_of(tbl, k, bad != 0);
             std::uint32_t why = 0u;
             const bool fl_ok = pd_params_check(&p, &why) == FSW_OK;
             const ref::PdChannelTable t = ref::dequantise(p);
@@ -205,11 +212,7 @@ SIM_TEST(ref_adaptive_accepted_and_refused_where_the_flight_is)
     const pd_table_t def = sim::pd_boot_table("pd_default");
     for (int bad = 0; bad < 2; ++bad) {
         for (std::uint32_t k = 0; k < PD_N_CH; ++k) {
-            pd_params_t p{};
-            pd_params_of(&def, k, &p);
-            if (bad != 0) {
-                p.g.fest.n_sec = 3u;
-            }
+            pd_params_t p = params_of(def, k, bad != 0);
             pd_state_t st{};
             pd_init(&st, &p);
             const bool fl = pd_set_source(&st, &p, static_cast<std::uint8_t>(PD_SRC_ADAPTIVE));
