@@ -489,6 +489,34 @@ double NodeResult::t_at(double k2v) const
     throw std::invalid_argument("t_at: k2 not on the grid");
 }
 
+namespace {
+
+// kPlateauMargin: k2opt moved up (never down) until the window around it is free of a t* jump.
+double plateau_k2(const NodeResult &r)
+{
+    if (r.k2opt < 0.0) {
+        return r.k2opt;
+    }
+    const double band = r.tmin + std::max(5.0, 0.05 * r.tmin);
+    for (std::size_t i = 0; i < r.k2.size(); ++i) {
+        if (r.k2[i] < r.k2opt - 1e-9 || !r.admissible[i]) {
+            continue;
+        }
+        bool flat = true;
+        for (std::size_t j = 0; j < r.k2.size() && flat; ++j) {
+            if (std::fabs(r.k2[j] - r.k2[i]) <= kPlateauMargin + 1e-9) {
+                flat = r.tstar[j] >= 0.0 && r.tstar[j] <= band;
+            }
+        }
+        if (flat) {
+            return r.k2[i];
+        }
+    }
+    return r.k2opt;
+}
+
+}  // namespace
+
 NodeResult sweep_node(const Channel &ch, double f_hz, const std::vector<double> &k2grid, Law law, double horizon)
 {
     NodeResult r;
@@ -509,6 +537,7 @@ NodeResult sweep_node(const Channel &ch, double f_hz, const std::vector<double> 
         }
     }
     r.tmin = std::isfinite(best) ? best : -1.0;
+    r.k2plat = plateau_k2(r);
     return r;
 }
 
@@ -519,7 +548,7 @@ Schedule finish_schedule(std::vector<NodeResult> nodes)
     const std::size_t n = sc.nodes.size();
     sc.k2s.assign(n, 0.0);
     for (std::size_t i = n; i-- > 0;) {
-        double v = sc.nodes[i].k2opt;
+        double v = sc.nodes[i].k2plat;
         if (v < 0.0) {  // nothing settles: the largest admissible k2 (documented choice)
             for (std::size_t j = 0; j < sc.nodes[i].k2.size(); ++j) {
                 if (sc.nodes[i].admissible[j]) {

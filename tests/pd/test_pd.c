@@ -562,7 +562,7 @@ UT_TEST(sched_clamps_at_the_end_nodes_and_to_the_k2_limits)
     UT_UEQ(pd_sched_k2(&g_p, f_node(18u)), 0u);             /* roll's high-f nodes are 0 */
 }
 
-/* GROUND at 0.03 Hz = node 4: pitch 370 s (G_D = 2 370 4 = 2960). The change shows at the next
+/* GROUND at 0.03 Hz = node 4: pitch 385 s (G_D = 2 385 4 = 3080). The change shows at the next
    step with a one-step RETUNE pulse and the source bits; FIXED via pd_set_k2_fixed; FALLBACK_GAIN
    exactly while k2 == k2_cold (475 s). */
 UT_TEST(gain_source_changes_take_effect_at_the_next_step)
@@ -576,11 +576,11 @@ UT_TEST(gain_source_changes_take_effect_at_the_next_step)
     UT_TRUE(pd_set_source(&g_s, &g_p, (uint8_t)PD_SRC_GROUND));
     o = step(&g_s, &g_p, 1000, true);
     UT_UEQ(o.health, PD_H_RETUNE | (PD_SRC_GROUND << PD_H_SRC_SH));
-    UT_UEQ(g_s.tlm.k2_q22, K_Q22(370));
-    UT_EQ(g_s.g_d_q16, Q16(2960));
+    UT_UEQ(g_s.tlm.k2_q22, K_Q22(385));
+    UT_EQ(g_s.g_d_q16, Q16(3080));
     UT_EQ(o.m_q28, -160000);                      /* dy = 0: -160 1000 */
-    o = step(&g_s, &g_p, 1100, true);             /* M = -4 (40 1100 + 2960 100) = -1 360 000 */
-    UT_EQ(o.m_q28, -1360000);
+    o = step(&g_s, &g_p, 1100, true);             /* M = -4 (40 1100 + 3080 100) = -1 408 000 */
+    UT_EQ(o.m_q28, -1408000);
     UT_UEQ(o.health, PD_SRC_GROUND << PD_H_SRC_SH);
     {
         pd_params_t q = g_p;

@@ -250,11 +250,11 @@ UT_TEST(ch_mask_clearing_a_channel_commands_zero)
 }
 
 /* SET_F 30 000 (1e-6 Hz) = 0.03 Hz selects GROUND at node 4 (0.03 2^32 = 128 849 018.88 -> uq32
-   128 849 019, 0.08 uq32 LSB above the node: phi = 0): yaw 205 s, roll 135 s (already its k2: no
-   RETUNE), pitch 370 s exactly, with a RETUNE pulse on that sample only. With pitch G_D = 2 370 4
-   = 2960, yaw 2 205 4 = 1640, roll 1080, a 64-count step on all three:
-   yaw -4 (40 64 + 1640 64) / 256 = -1680, roll -4 (30 64 + 1080 64) / 256 = -1110,
-   pitch -4 (40 64 + 2960 64) / 256 = -3000. SET_SOURCE 0 returns to FIXED (k2_nom), SET_SOURCE 1 to
+   128 849 019, 0.08 uq32 LSB above the node: phi = 0): yaw 220 s, roll 135 s (already its k2: no
+   RETUNE), pitch 385 s exactly, with a RETUNE pulse on that sample only. With pitch G_D = 2 385 4
+   = 3080, yaw 2 220 4 = 1760, roll 1080, a 64-count step on all three:
+   yaw -4 (40 64 + 1760 64) / 256 = -1800, roll -4 (30 64 + 1080 64) / 256 = -1110,
+   pitch -4 (40 64 + 3080 64) / 256 = -3120. SET_SOURCE 0 returns to FIXED (k2_nom), SET_SOURCE 1 to
    GROUND at the f last commanded. */
 UT_TEST(set_f_and_set_source_select_the_gain_source)
 {
@@ -268,18 +268,18 @@ UT_TEST(set_f_and_set_source_select_the_gain_source)
     in.tc_arg[0] = 30000;
     run(&in);
     UT_UEQ(g_oa.tlm.n_tc, 1u);
-    UT_UEQ(ch(0)->k2_q22, K_Q22(205));
+    UT_UEQ(ch(0)->k2_q22, K_Q22(220));
     UT_UEQ(ch(1)->k2_q22, K_Q22(135));
-    UT_UEQ(ch(2)->k2_q22, K_Q22(370));
+    UT_UEQ(ch(2)->k2_q22, K_Q22(385));
     UT_UEQ(ch(2)->health, PD_H_RETUNE | (PD_SRC_GROUND << PD_H_SRC_SH));
     UT_UEQ(ch(0)->health, PD_H_RETUNE | (PD_SRC_GROUND << PD_H_SRC_SH));
     UT_UEQ(ch(1)->health, PD_H_FALLBACK_GAIN | (PD_SRC_GROUND << PD_H_SRC_SH));
     in = frame(3, 64, 64, 64);
     run(&in);
     UT_UEQ(ch(2)->health & PD_H_RETUNE, 0u);
-    UT_EQ(g_oa.act_cnt[0], -1680);
+    UT_EQ(g_oa.act_cnt[0], -1800);
     UT_EQ(g_oa.act_cnt[1], -1110);
-    UT_EQ(g_oa.act_cnt[2], -3000);
+    UT_EQ(g_oa.act_cnt[2], -3120);
     /* out-of-range arguments are ignored: SET_SOURCE 3 (no such source), SET_F 0.5 Hz */
     in = frame(4, 64, 64, 64);
     in.tc = TC(PD_CMD_SET_SOURCE);
@@ -289,7 +289,7 @@ UT_TEST(set_f_and_set_source_select_the_gain_source)
     in.tc = TC(PD_CMD_SET_F);
     in.tc_arg[0] = 500000;
     run(&in);
-    UT_UEQ(ch(2)->k2_q22, K_Q22(370));
+    UT_UEQ(ch(2)->k2_q22, K_Q22(385));
     UT_UEQ(ch(2)->health, PD_SRC_GROUND << PD_H_SRC_SH);
     in = frame(6, 64, 64, 64);
     in.tc = TC(PD_CMD_SET_SOURCE);
@@ -301,7 +301,7 @@ UT_TEST(set_f_and_set_source_select_the_gain_source)
     in.tc = TC(PD_CMD_SET_SOURCE);
     in.tc_arg[0] = (int32_t)PD_SRC_GROUND;
     run(&in);
-    UT_UEQ(ch(2)->k2_q22, K_Q22(370));
+    UT_UEQ(ch(2)->k2_q22, K_Q22(385));
     UT_UEQ(g_oa.tlm.n_tc, 5u);
     UT_UEQ(g_oa.tlm.n_tc_rej, 0u);
 }
@@ -548,7 +548,7 @@ UT_TEST(n_div_2_a_lost_sample_frame_keeps_the_sample_phase)
 /* pd_params_check refuses GROUND for a table whose schedule was made for another law (the literal
    table flies LITERAL with a FAST schedule; PD_WHY_MODE). Neither SET_F (which selects GROUND) nor
    SET_SOURCE GROUND may bring that schedule in by telecommand: pitch keeps k2_nom = 475 s (the FAST
-   node at 0.03 Hz would be 370 s) and the source stays FIXED. */
+   node at 0.03 Hz would be 385 s) and the source stays FIXED. */
 UT_TEST(ground_is_refused_for_a_schedule_of_another_law)
 {
     fsw_in_t in;

@@ -146,6 +146,25 @@ SIM_TEST(a3_3_pitch_nodes)
     EXPECT_TRUE(n01.k2opt >= 350.0);
     EXPECT_TRUE(n01.tmin >= 180.0 && n01.tmin <= 260.0);
     EXPECT_TRUE(n01.t_at(150.0) > 1500.0 || n01.t_at(150.0) < 0.0);
+    // The table's k2 keeps kPlateauMargin from a t* jump (§9). At 0.03 Hz the argmin 370 s sits 5 s
+    // above one (t*(365) is a ripple cycle later: outside A3-3's band of t*min), so the node takes the
+    // smallest k2 whose whole window k2 +- 15 s stays in the band: 385 s; no window may hold a jump.
+    const double band = n03.tmin + std::max(5.0, 0.05 * n03.tmin);
+    std::printf("  pitch 0.03: t*(365)=%.2f t*(370)=%.2f k2plat %.0f t*=%.2f (band %.2f)\n", n03.t_at(365.0),
+                n03.t_at(370.0), n03.k2plat, n03.t_at(n03.k2plat), band);
+    EXPECT_TRUE(n03.t_at(365.0) > band);
+    EXPECT_NEAR(n03.k2plat, 385.0, 0.0);
+    // At 0.10 Hz (ripple period 10 s) the plateau is 75..85 s, narrower than the window (t*(90) 57.75 s
+    // is above the band, 55 s): the rule keeps the argmin there.
+    EXPECT_TRUE(n10.t_at(90.0) > n10.tmin + 5.0);
+    EXPECT_NEAR(n10.k2plat, n10.k2opt, 0.0);
+    for (const NodeResult *n : {&n03, &n01}) {
+        EXPECT_TRUE(n->k2plat >= n->k2opt);
+        const double b = n->tmin + std::max(5.0, 0.05 * n->tmin);
+        for (double k = n->k2plat - kPlateauMargin; k <= n->k2plat + kPlateauMargin + 1e-9; k += 5.0) {
+            EXPECT_TRUE(n->t_at(k) >= 0.0 && n->t_at(k) <= b);
+        }
+    }
 }
 
 // A3-3 table properties and the §2.5 cells at the 0.01-Hz nodes (pitch, yaw: full synthesis).
